@@ -1,0 +1,37 @@
+// Device profiles: everything Vulkan leaves to the implementation that the emulator must reproduce.
+// Behaviour differences between devices live here, never in #ifdefs (docs/DESIGN.md, "Profiles").
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace emu {
+
+enum class Stage { Compute, Fragment };
+enum class DenormMode { Preserve, Flush };
+
+struct DeviceProfile {
+  std::string name;
+  bool verified;             // every field below measured bit-exact on the device
+  std::string provenance;    // where the values come from
+  // Texture unit, float path.
+  int filterWeightFracBits;  // 0: exact float weights (x - floor(x)); n: weights rounded to n fraction bits
+  bool lerpFused;            // each lerp one fma(w, b - a, a)
+  int lodFractionBits;       // 0: exact lod fraction
+  // Texture unit, 8-bit path: lavapipe filters RGBA8 in 8.8 fixed point when both wrap modes are
+  // clamp-to-edge or repeat (Mesa's AoS sampler); otherwise the float path.
+  bool unorm8FixedPoint;
+  // Denormals per shader stage.
+  DenormMode denormCompute;
+  DenormMode denormFragment;
+  DenormMode denorm(Stage s) const { return s == Stage::Compute ? denormCompute : denormFragment; }
+};
+
+const DeviceProfile& lavapipeProfile();
+const DeviceProfile& nvidiaProfile();
+/// Profile by name ("lavapipe", "nvidia"); throws std::invalid_argument listing the known names.
+const DeviceProfile& profileByName(std::string_view name);
+/// Profile for a Vulkan device name ("llvmpipe ..." -> lavapipe, "NVIDIA ..." -> nvidia).
+const DeviceProfile& profileForDevice(std::string_view deviceName);
+
+}  // namespace emu

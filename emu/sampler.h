@@ -1,0 +1,39 @@
+// The emulated sampler: textureLod and texelFetch as a device profile says the device does them.
+// Stages of the model (SwiftShader-style split): LOD (bias, min/max clamp, level choice),
+// addressing (wrap per mode, per filter), texel decode (emu/format.h), filtering (float path or the
+// 8-bit fixed-point path).
+#pragma once
+#include <cstdint>
+
+#include "emu/device_profile.h"
+#include "emu/texture.h"
+
+namespace emu {
+
+enum class Filter : uint8_t { Nearest, Linear };
+enum class MipmapMode : uint8_t { Nearest, Linear };
+enum class AddressMode : uint8_t { ClampToEdge, Repeat, MirroredRepeat };
+
+struct SamplerDesc {
+  Filter magFilter = Filter::Linear;
+  Filter minFilter = Filter::Linear;
+  MipmapMode mipmapMode = MipmapMode::Linear;
+  AddressMode addressU = AddressMode::ClampToEdge;
+  AddressMode addressV = AddressMode::ClampToEdge;
+  float lodBias = 0.0f;
+  float minLod = 0.0f;
+  float maxLod = 1000.0f;
+};
+
+const char* filterName(Filter f);
+const char* addressName(AddressMode a);
+
+/// textureLod(sampler2DArray, vec3(u, v, layer), lod).
+Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, float layer, float lod);
+/// texelFetch(sampler2DArray, ivec3(x, y, layer), level); coordinates must be in range.
+Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32_t level);
+
+/// Batch form (the SIMD-facing entry): n queries of (u, v, layer, lod), results as 4 floats each.
+void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* query, float* out, size_t n);
+
+}  // namespace emu

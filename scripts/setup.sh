@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# shadetwin set-up: installs the Debian packages the project needs (skipping what is present) and
+# fetches the real assets into the ignored cache folder `assets/`. Idempotent; safe to re-run.
+#   assets/hdri/*.exr        CC0 studio-light worlds from Debian's blender-data (forest, courtyard, ...)
+#   assets/hdri/LICENSE      their licence text
+#   assets/npm/bunny, teapot the npm packages `bunny` and `teapot` (meshes)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cache="$root/assets"
+
+pkgs=(build-essential cmake ninja-build pkg-config
+      libembree-dev libopenimageio-dev openimageio-tools libtbb-dev
+      libbenchmark-dev libgtest-dev libgmock-dev
+      libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslc spirv-tools
+      libcli11-dev nlohmann-json3-dev libtinygltf-dev)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+# npm comes with Node.js; Debian's npm package conflicts with other Node.js builds, so only ask for it when absent.
+command -v npm >/dev/null 2>&1 || missing+=(npm)
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo_=""; [ "$(id -u)" = 0 ] || sudo_=sudo
+  $sudo_ apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_ apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+else
+  echo "setup: all ${#pkgs[@]} Debian packages present"
+fi
+
+mkdir -p "$cache/hdri" "$cache/npm"
+if ! ls "$cache/hdri/"*.exr >/dev/null 2>&1; then
+  tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+  (cd "$tmp" && apt-get download blender-data >/dev/null)
+  dpkg-deb --fsys-tarfile "$tmp"/blender-data_*.deb |
+    tar -x -C "$tmp" --wildcards './usr/share/blender/datafiles/studiolights/world/*' './usr/share/doc/blender-data/copyright'
+  cp "$tmp"/usr/share/blender/datafiles/studiolights/world/*.exr "$cache/hdri/"
+  cp "$tmp"/usr/share/doc/blender-data/copyright "$cache/hdri/LICENSE"
+fi
+for m in bunny teapot; do
+  if [ ! -f "$cache/npm/$m/package.json" ]; then
+    (cd "$cache/npm" && tgz=$(npm pack "$m" --silent 2>/dev/null | tail -n1) && mkdir -p "$m" &&
+       tar -xzf "$tgz" -C "$m" --strip-components=1 && rm -f "$tgz")
+  fi
+done
+echo "setup: assets in $cache: $(ls "$cache/hdri" | grep -c exr) HDRIs, meshes: $(ls "$cache/npm" | tr '\n' ' ')"

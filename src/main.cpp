@@ -1,0 +1,47 @@
+// shadetwin command line.
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <string>
+#include <iostream>
+
+#include "verify/verify.h"
+#include "vk/context.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"shadetwin: a bit-exact CPU twin of a Vulkan image-based-lighting renderer"};
+  app.require_subcommand(1);
+  shadetwin::VerifyOptions vo;
+  auto* verify = app.add_subcommand("verify", "differential tests: emulator and C++ builds against a Vulkan device");
+  verify->require_subcommand(1);
+  for (const char* what : {"math", "texture"}) {
+    auto* sub = verify->add_subcommand(what, std::string("verify ") + what);
+    sub->add_option("--count", vo.count, "inputs per function / lookups per configuration")->check(CLI::Range(1, 100000000));
+    sub->add_option("--seed", vo.seed, "random seed");
+    sub->add_option("--device", vo.device, "Vulkan device (substring of its name; default lavapipe)");
+    sub->add_flag("--validate", vo.validate, "enable Vulkan validation layers; any error fails the run");
+    if (std::string(what) == "texture") {
+      sub->add_flag("--finite", vo.finiteTexels, "only finite texel values (no inf/NaN)");
+      sub->add_option("--filters", vo.filters,
+                      "comma-separated cases: texelFetch,nearest,nearest-miplin,bilinear,trilinear,magN-minL");
+    }
+  }
+  app.add_subcommand("devices", "list Vulkan devices");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (app.got_subcommand("devices")) {
+      for (auto& n : shadetwin::vk::Context::listDevices()) std::cout << n << "\n";
+      return 0;
+    }
+    if (verify->got_subcommand("math")) return shadetwin::verifyMath(vo, std::cout);
+    if (verify->got_subcommand("texture")) return shadetwin::verifyTexture(vo, std::cout);
+  } catch (const std::exception& e) {
+    std::cerr << "shadetwin: error: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,5 @@
+// Every shared shading header, in dependency order. Included once per C++ lane type by
+// instantiate.h (no include guards on purpose) and by the GLSL entry points.
+#include "shade/prelude.h"
+#include "shade/exact_math.h"
+#include "shade/verify_kernels.h"

@@ -1,0 +1,103 @@
+// The shadetwin shading dialect: one source, compiled as GLSL 4.50 (glslc) and as C++ (once per lane
+// type, see src/shade/instantiate.h). Shared shading headers include nothing else.
+//
+// Rules of the dialect (docs/DESIGN.md, "The dialect"):
+//   - Per-lane values: Float, Float2, Float3, Float4, Int, Uint, Mask. Uniform values (loop counters,
+//     constants): float, int, uint. Float literals carry the f suffix (1.0f).
+//   - Only .x/.y/.z/.w and constructors on vectors; no multi-letter swizzles.
+//   - No `if`/`?:`/`while` on a Mask: use select(m, a, b) (a where m). Loops run a uniform count.
+//   - No raw '/', sqrt, inversesqrt, normalize, exp, log, pow, sin, cos, fma, mix, dot, length in
+//     shared code: the exact-math layer (exact_math.h) and the dialect's own dot/cross/lerp are
+//     the only sources of those. The C++ lane types have no operator/, so a raw '/' fails the build.
+//   - Declare locals with PRECISE; the build also marks every float operation NoContraction in SPIR-V.
+//   - Out parameters: OUT(T) / INOUT(T), assigned first; prefer returning a struct.
+#ifndef SHADE_PRELUDE_GLSL_DONE
+#ifdef GL_core_profile
+#define SHADE_PRELUDE_GLSL_DONE 1
+
+#define Float float
+#define Float2 vec2
+#define Float3 vec3
+#define Float4 vec4
+#define Int int
+#define Uint uint
+#define Mask bool
+#define PRECISE precise
+#define OUT(T) out T
+#define INOUT(T) inout T
+#define INLINE
+
+// select(m, a, b): a where m is true, else b. GLSL mix() with a bool selector picks without arithmetic.
+float select(bool m, float a, float b) { return mix(b, a, m); }
+vec2 select(bool m, vec2 a, vec2 b) { return mix(b, a, bvec2(m)); }
+vec3 select(bool m, vec3 a, vec3 b) { return mix(b, a, bvec3(m)); }
+vec4 select(bool m, vec4 a, vec4 b) { return mix(b, a, bvec4(m)); }
+int select(bool m, int a, int b) { return mix(b, a, m); }
+uint select(bool m, uint a, uint b) { return mix(b, a, m); }
+bool select(bool m, bool a, bool b) { return mix(b, a, m); }
+#define dot st_dot
+#define cross st_cross
+
+uint mulHi(uint a, uint b) {
+  uint hi;
+  uint lo;
+  umulExtended(a, b, hi, lo);
+  return hi;
+}
+// Explicit evaluation order, no fusion: ((x*x + y*y) + z*z) + w*w.
+float st_dot(vec2 a, vec2 b) { precise float r = a.x * b.x + a.y * b.y; return r; }
+float st_dot(vec3 a, vec3 b) { precise float r = (a.x * b.x + a.y * b.y) + a.z * b.z; return r; }
+float st_dot(vec4 a, vec4 b) {
+  precise float r = ((a.x * b.x + a.y * b.y) + a.z * b.z) + a.w * b.w;
+  return r;
+}
+vec3 st_cross(vec3 a, vec3 b) {
+  precise vec3 r = vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+  return r;
+}
+#endif  // GL_core_profile
+#endif  // SHADE_PRELUDE_GLSL_DONE
+
+#ifndef GL_core_profile
+// ---- C++: this part is included once per lane type, inside a namespace that has defined
+// Float, Int, Uint and Mask (see instantiate.h). Everything below is per instantiation. ----
+#define PRECISE
+#define OUT(T) T&
+#define INOUT(T) T&
+#define INLINE inline
+
+using Float2 = ::shadetwin::shade::V2<Float>;
+using Float3 = ::shadetwin::shade::V3<Float>;
+using Float4 = ::shadetwin::shade::V4<Float>;
+using uint = uint32_t;
+
+inline Float abs(Float x) { return uintBitsToFloat(floatBitsToUint(x) & 0x7fffffffu); }
+inline Float min(Float a, Float b) { return select(b < a, b, a); }  // GLSL: y if y < x, else x
+inline Float max(Float a, Float b) { return select(a < b, b, a); }  // GLSL: y if x < y, else x
+inline Int min(Int a, Int b) { return select(b < a, b, a); }
+inline Int max(Int a, Int b) { return select(a < b, b, a); }
+inline Uint min(Uint a, Uint b) { return select(b < a, b, a); }
+inline Uint max(Uint a, Uint b) { return select(a < b, b, a); }
+inline Float clamp(Float x, Float lo, Float hi) { return min(max(x, lo), hi); }
+inline Int clamp(Int x, Int lo, Int hi) { return min(max(x, lo), hi); }
+/// floor per IEEE: exact for every input (|x| >= 2^23 is already integral; NaN stays NaN).
+inline Float floor(Float x) {
+  Float t = Float(Int(x));
+  t = select(t > x, t - 1.0f, t);
+  return select(abs(x) < 8388608.0f, t, x);
+}
+inline Float fract(Float x) { return x - floor(x); }
+inline Float dot(Float2 a, Float2 b) { return a.x * b.x + a.y * b.y; }
+inline Float dot(Float3 a, Float3 b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+inline Float dot(Float4 a, Float4 b) { return ((a.x * b.x + a.y * b.y) + a.z * b.z) + a.w * b.w; }
+inline Float3 cross(Float3 a, Float3 b) {
+  return Float3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+inline Float2 select(Mask m, Float2 a, Float2 b) { return Float2(select(m, a.x, b.x), select(m, a.y, b.y)); }
+inline Float3 select(Mask m, Float3 a, Float3 b) {
+  return Float3(select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z));
+}
+inline Float4 select(Mask m, Float4 a, Float4 b) {
+  return Float4(select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z), select(m, a.w, b.w));
+}
+#endif  // !GL_core_profile

@@ -1,0 +1,236 @@
+// verify texture: random textureLod / texelFetch lookups on random textures, per format x filter x
+// address mode x shader stage, through the emulator (the device's profile) and the Vulkan build.
+#include <cmath>
+#include <cstring>
+#include <iomanip>
+#include <memory>
+#include <ostream>
+#include <random>
+#include <sstream>
+#include <vector>
+
+#include "emu/device_profile.h"
+#include "emu/fpenv.h"
+#include "emu/sampler.h"
+#include "verify/verify.h"
+#include "vk/context.h"
+
+namespace shadetwin {
+
+namespace {
+#include "verify_texture_comp.inc"
+#include "verify_texture_frag.inc"
+#include "fullscreen_vert.inc"
+
+VkFormat vkFormat(emu::Format f) {
+  switch (f) {
+    case emu::Format::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case emu::Format::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case emu::Format::RGBA8_UNORM: return VK_FORMAT_R8G8B8A8_UNORM;
+    default: return VK_FORMAT_R32_SFLOAT;
+  }
+}
+VkFilter vkFilter(emu::Filter f) { return f == emu::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
+VkSamplerAddressMode vkAddress(emu::AddressMode a) {
+  switch (a) {
+    case emu::AddressMode::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case emu::AddressMode::Repeat: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    default: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+  }
+}
+
+// A random float texel value: mostly in [-2, 2], some outside [0, 1) by far, a few inf/NaN/denormal.
+float randomValue(std::mt19937& rng, bool finite) {
+  uint32_t pick = rng() % 1000;
+  if (finite && pick < 3) pick = 500;
+  if (pick == 0) return INFINITY;
+  if (pick == 1) return -INFINITY;
+  if (pick == 2) return NAN;
+  if (pick == 3) return 1e-39f;  // denormal
+  if (pick < 20) return std::ldexp(float(rng() % 2000) - 1000.0f, int(rng() % (finite ? 6 : 40)) - 10);
+  return std::uniform_real_distribution<float>(-2.0f, 2.0f)(rng);
+}
+
+emu::Texture randomTexture(emu::Format fmt, std::mt19937& rng, bool finite) {
+  static const uint32_t sizes[] = {1, 2, 3, 4, 5, 7, 8, 13, 16, 31, 32, 37, 64, 100};
+  uint32_t w = sizes[rng() % 14], h = sizes[rng() % 14], layers = 1 + rng() % 3;
+  uint32_t full = emu::Texture::fullChainLevels(w, h);
+  uint32_t levels = (rng() % 3 == 0) ? 1 + rng() % full : full;
+  const uint32_t tb = emu::formatInfo(fmt).texelBytes;
+  std::vector<std::vector<uint8_t>> data(levels);
+  for (uint32_t l = 0; l < levels; ++l) {
+    uint32_t lw = std::max(1u, w >> l), lh = std::max(1u, h >> l);
+    data[l].resize(size_t(lw) * lh * layers * tb);
+    uint8_t* p = data[l].data();
+    for (size_t t = 0; t < size_t(lw) * lh * layers; ++t, p += tb) {
+      switch (fmt) {
+        case emu::Format::RGBA32F:
+        case emu::Format::R32F:
+          for (uint32_t c = 0; c < tb / 4; ++c) {
+            float v = randomValue(rng, finite);
+            std::memcpy(p + 4 * c, &v, 4);
+          }
+          break;
+        case emu::Format::RGBA16F:
+          for (int c = 0; c < 4; ++c) {
+            uint16_t hv = emu::floatToHalf(randomValue(rng, finite));
+            std::memcpy(p + 2 * c, &hv, 2);
+          }
+          break;
+        case emu::Format::RGBA8_UNORM:
+          for (int c = 0; c < 4; ++c) p[c] = uint8_t(rng());
+          break;
+      }
+    }
+  }
+  return emu::Texture(fmt, w, h, layers, std::move(data));
+}
+
+// Coordinates that hit the interesting places: texel centres and edges, outside [0, 1), negative.
+float randomCoord(std::mt19937& rng, uint32_t size) {
+  uint32_t pick = rng() % 8;
+  float k = float(int(rng() % (4 * size + 1)) - int(size));
+  if (pick == 0) return (k + 0.5f) / float(size);
+  if (pick == 1) return k / float(size);
+  return std::uniform_real_distribution<float>(-1.5f, 2.5f)(rng);
+}
+
+float randomLod(std::mt19937& rng, uint32_t levels) {
+  uint32_t pick = rng() % 6;
+  if (pick == 0) return float(int(rng() % (levels + 3)) - 1);          // integral
+  if (pick == 1) return float(int(rng() % (levels + 3)) - 1) + 0.5f;   // ties
+  return std::uniform_real_distribution<float>(-2.0f, float(levels) + 1.0f)(rng);
+}
+
+struct FilterCase {
+  const char* name;
+  emu::Filter mag, min;
+  emu::MipmapMode mip;
+};
+const FilterCase kFilters[] = {
+    {"nearest", emu::Filter::Nearest, emu::Filter::Nearest, emu::MipmapMode::Nearest},
+    {"nearest-miplin", emu::Filter::Nearest, emu::Filter::Nearest, emu::MipmapMode::Linear},
+    {"bilinear", emu::Filter::Linear, emu::Filter::Linear, emu::MipmapMode::Nearest},
+    {"trilinear", emu::Filter::Linear, emu::Filter::Linear, emu::MipmapMode::Linear},
+    {"magN-minL", emu::Filter::Nearest, emu::Filter::Linear, emu::MipmapMode::Linear},
+};
+const emu::AddressMode kAddress[] = {emu::AddressMode::ClampToEdge, emu::AddressMode::Repeat, emu::AddressMode::MirroredRepeat};
+
+}  // namespace
+
+int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
+  vk::Context ctx({opts.device, opts.validate});
+  const emu::DeviceProfile& profile = emu::profileForDevice(ctx.deviceName());
+  out << "device: " << ctx.deviceName() << " (profile " << profile.name << (profile.verified ? "" : ", unverified") << ")\n";
+  const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  vk::Kernel comp(ctx, vk::Stage::Compute, kSpv_verify_texture_comp, layout, 12);
+  vk::Kernel frag(ctx, vk::Stage::Fragment, kSpv_verify_texture_frag, layout, 12, kSpv_fullscreen_vert);
+  const size_t n = opts.count;
+  vk::Buffer qBuf(ctx, n * 16), rBuf(ctx, n * 16);
+  std::vector<float> q(4 * n), emuOut(4 * n), gpu(4 * n);
+  uint64_t identical = 0, total = 0;
+  std::mt19937 rng(uint32_t(opts.seed));
+  out << std::left << std::setw(8) << "format" << std::setw(16) << "filter" << std::setw(8) << "address" << std::setw(10)
+      << "stage" << std::right << std::setw(22) << "identical/total" << std::setw(10) << "max ulp" << "\n";
+  for (emu::Format fmt : emu::kAllFormats) {
+    for (int fi = -1; fi < int(std::size(kFilters)); ++fi) {  // -1: texelFetch
+      for (emu::AddressMode am : kAddress) {
+        if (fi < 0 && am != emu::AddressMode::ClampToEdge) continue;
+        const std::string caseName = fi < 0 ? "texelFetch" : kFilters[fi].name;
+        if (!opts.filters.empty() && ("," + opts.filters + ",").find("," + caseName + ",") == std::string::npos) continue;
+        emu::Texture tex = randomTexture(fmt, rng, opts.finiteTexels);
+        vk::Image image(ctx, vkFormat(fmt), tex.width(), tex.height(), tex.layers(), tex.levels(), emu::formatInfo(fmt).texelBytes);
+        emu::SamplerDesc sd;
+        if (fi >= 0) {
+          sd.magFilter = kFilters[fi].mag;
+          sd.minFilter = kFilters[fi].min;
+          sd.mipmapMode = kFilters[fi].mip;
+        }
+        sd.addressU = sd.addressV = am;
+        switch (rng() % 4) {  // sampler LOD state: bias, min/max clamps
+          case 1: sd.lodBias = (rng() & 1) ? 0.75f : -1.25f; break;
+          case 2: sd.minLod = 0.5f; sd.maxLod = 2.25f; break;
+          default: break;
+        }
+        VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+        si.magFilter = vkFilter(sd.magFilter);
+        si.minFilter = vkFilter(sd.minFilter);
+        si.mipmapMode = sd.mipmapMode == emu::MipmapMode::Nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+        si.addressModeU = si.addressModeV = si.addressModeW = vkAddress(am);
+        si.mipLodBias = sd.lodBias;
+        si.minLod = sd.minLod;
+        si.maxLod = sd.maxLod;
+        vk::Sampler sampler(ctx, si);
+        for (emu::Stage stage : {emu::Stage::Compute, emu::Stage::Fragment}) {
+          for (size_t i = 0; i < n; ++i) {
+            if (fi < 0) {
+              uint32_t lvl = rng() % tex.levelCount();
+              int32_t v[4] = {int32_t(rng() % tex.levelWidth(lvl)), int32_t(rng() % tex.levelHeight(lvl)),
+                              int32_t(rng() % tex.layers()), int32_t(lvl)};
+              std::memcpy(&q[4 * i], v, 16);
+            } else {
+              q[4 * i] = randomCoord(rng, tex.width());
+              q[4 * i + 1] = randomCoord(rng, tex.height());
+              q[4 * i + 2] = float(rng() % tex.layers());
+              q[4 * i + 3] = randomLod(rng, tex.levelCount());
+            }
+          }
+          {
+            emu::DenormalScope mode(profile.denorm(stage) == emu::DenormMode::Flush);
+            for (size_t i = 0; i < n; ++i) {
+              emu::Texel4 t;
+              if (fi < 0) {
+                int32_t v[4];
+                std::memcpy(v, &q[4 * i], 16);
+                t = emu::texelFetch(tex, v[0], v[1], v[2], v[3]);
+              } else {
+                t = emu::textureLod(tex, sd, profile, q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
+              }
+              std::memcpy(&emuOut[4 * i], &t, 16);
+            }
+          }
+          std::memcpy(qBuf.data(), q.data(), n * 16);
+          struct { uint32_t mode, count, width; } push{fi < 0 ? 1u : 0u, uint32_t(n), 1024};
+          const vk::Binding binds[] = {{layout[0], VK_NULL_HANDLE, image.view(), sampler.handle()},
+                                       {layout[1], qBuf.handle()}, {layout[2], rBuf.handle()}};
+          (stage == emu::Stage::Compute ? comp : frag).run(binds, &push, uint32_t(n), 1024);
+          std::memcpy(gpu.data(), rBuf.data(), n * 16);
+          uint64_t same = 0;
+          int64_t maxUlp = 0;
+          size_t firstBad = n;
+          for (size_t i = 0; i < n; ++i) {
+            bool ok = true;
+            for (int c = 0; c < 4; ++c) {
+              ok = ok && sameBits(emuOut[4 * i + c], gpu[4 * i + c]);
+              maxUlp = std::max(maxUlp, ulpDistance(emuOut[4 * i + c], gpu[4 * i + c]));
+            }
+            same += ok;
+            if (!ok && firstBad == n) firstBad = i;
+          }
+          identical += same;
+          total += n;
+          std::ostringstream tex_desc;
+          out << std::left << std::setw(8) << emu::formatInfo(fmt).name << std::setw(16) << (fi < 0 ? "texelFetch" : kFilters[fi].name)
+              << std::setw(8) << emu::addressName(am) << std::setw(10) << (stage == emu::Stage::Compute ? "compute" : "fragment")
+              << std::right << std::setw(10) << same << "/" << std::left << std::setw(11) << n << std::right << std::setw(10)
+              << maxUlp;
+          if (firstBad < n) {
+            size_t i = firstBad;
+            out << "   first diff: tex " << tex.width() << "x" << tex.height() << "x" << tex.layers() << " L" << tex.levelCount()
+                << " bias " << sd.lodBias << " lod[" << sd.minLod << "," << sd.maxLod << "] q=(" << std::setprecision(9)
+                << q[4 * i] << ", " << q[4 * i + 1] << ", " << q[4 * i + 2] << ", " << q[4 * i + 3] << ") emu=(" << emuOut[4 * i]
+                << ", " << emuOut[4 * i + 1] << ") gpu=(" << gpu[4 * i] << ", " << gpu[4 * i + 1] << ")" << std::setprecision(6);
+          }
+          out << "\n";
+        }
+      }
+    }
+  }
+  if (ctx.validationEnabled())
+    out << "validation errors: " << ctx.validationErrors() << (ctx.validationErrors() ? " (" + ctx.lastValidationMessage + ")" : "") << "\n";
+  out << "texture: " << identical << "/" << total << " bit-identical\n";
+  return (identical == total && ctx.validationErrors() == 0) ? 0 : 1;
+}
+
+}  // namespace shadetwin
