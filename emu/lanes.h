@@ -51,7 +51,7 @@ struct Mask {
   using V = vec_t<Elem, N>;                                                             \
   V v;                                                                                  \
   Self() = default;                                                                     \
-  Self(Elem s) { v = (V){} + s; }                                                       \
+  Self(Elem s) { for (int i = 0; i < N; ++i) v[i] = s; } /* keeps -0 and NaN bits */     \
   explicit Self(V x) : v(x) {}                                                          \
   Elem operator[](int i) const { return v[i]; }                                         \
   void set(int i, Elem x) { v[i] = x; }                                                 \

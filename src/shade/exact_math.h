@@ -443,7 +443,7 @@ Float exAtan2(Float y, Float x) {
   mx = select(huge, mx * 0.25f, mx);
   mn = select(huge, mn * 0.25f, mn);
   Mask zero = mx == 0.0f;
-  Mask big = mn >= 0.5f * mx;
+  Mask big = mn + mn >= mx && !zero;  // 2 mn is exact (0.5 mx would round for denormal mx)
   PRECISE Float num = select(big, mn - mx, mn);
   PRECISE Float den = select(big, mn + mx, select(zero, 1.0f, mx));
   PRECISE Float a = xmAtanPoly(exDiv(num, den));

@@ -10,8 +10,12 @@
 #include "emu/lanes.h"
 #include "shade/vec.h"
 
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+
 #define SHADE_INSTANTIATE(NS, FLOAT, INT, UINT, MASK)      \
   namespace shadetwin::shade::NS {                         \
+  namespace { /* shared functions are plain (GLSL) functions: internal linkage per TU */ \
   using Float = FLOAT;                                     \
   using Int = INT;                                         \
   using Uint = UINT;                                       \
@@ -27,21 +31,25 @@
 SHADE_INSTANTIATE(scalar, float, int32_t, uint32_t, bool)
 inline constexpr int kLanes = 1;
 #include "shade/all.inl"
+}  // namespace
 }  // namespace shadetwin::shade::scalar
 
 SHADE_INSTANTIATE(x4, emu::F32<4>, emu::I32<4>, emu::U32<4>, emu::Mask<4>)
 inline constexpr int kLanes = 4;
 #include "shade/all.inl"
+}  // namespace
 }  // namespace shadetwin::shade::x4
 
 SHADE_INSTANTIATE(x8, emu::F32<8>, emu::I32<8>, emu::U32<8>, emu::Mask<8>)
 inline constexpr int kLanes = 8;
 #include "shade/all.inl"
+}  // namespace
 }  // namespace shadetwin::shade::x8
 
 SHADE_INSTANTIATE(x16, emu::F32<16>, emu::I32<16>, emu::U32<16>, emu::Mask<16>)
 inline constexpr int kLanes = 16;
 #include "shade/all.inl"
+}  // namespace
 }  // namespace shadetwin::shade::x16
 
 namespace shadetwin::shade {
@@ -49,3 +57,4 @@ namespace simd = x8;
 }
 
 #undef SHADE_INSTANTIATE
+#pragma GCC diagnostic pop
