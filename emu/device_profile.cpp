@@ -11,7 +11,7 @@ const DeviceProfile& lavapipeProfile() {
       "lavapipe", true,
       "Mesa 22.3.6 llvmpipe (LLVM 15, 256-bit), measured with `shadetwin verify texture` and ../shared/facts/lavapipe.md",
       /*filterWeightFracBits=*/0, /*lerpFused=*/true, /*lodFractionBits=*/0, /*unorm8FixedPoint=*/true,
-      DenormMode::Preserve, DenormMode::Flush};
+      /*computeVectorLanes=*/8, /*fragmentVectorW=*/4, /*fragmentVectorH=*/2, DenormMode::Preserve, DenormMode::Flush};
   return p;
 }
 
@@ -21,7 +21,7 @@ const DeviceProfile& nvidiaProfile() {
       "public documentation only (CUDA programming guide, texture fetching: 9-bit weights with 8 fraction bits); "
       "not yet measured on a GPU",
       /*filterWeightFracBits=*/8, /*lerpFused=*/true, /*lodFractionBits=*/8, /*unorm8FixedPoint=*/false,
-      DenormMode::Preserve, DenormMode::Preserve};
+      /*computeVectorLanes=*/1, /*fragmentVectorW=*/1, /*fragmentVectorH=*/1, DenormMode::Preserve, DenormMode::Preserve};
   return p;
 }
 

@@ -21,6 +21,11 @@ struct DeviceProfile {
   // Texture unit, 8-bit path: lavapipe filters RGBA8 in 8.8 fixed point when both wrap modes are
   // clamp-to-edge or repeat (Mesa's AoS sampler); otherwise the float path.
   bool unorm8FixedPoint;
+  // Lane grouping of the sampler's per-vector decisions (need lerp, need linear): compute invocations
+  // i / computeVectorLanes; fragment pixels in blocks of fragmentVectorW x fragmentVectorH. 1 x 1 (and
+  // computeVectorLanes 1) means per-lane decisions.
+  int computeVectorLanes;
+  int fragmentVectorW, fragmentVectorH;
   // Denormals per shader stage.
   DenormMode denormCompute;
   DenormMode denormFragment;

@@ -3,6 +3,7 @@
 #include <climits>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 namespace emu {
 
@@ -116,12 +117,22 @@ float quantizeWeight(float w, int bits) {
   return std::nearbyint(w * scale) / scale;
 }
 
+// Filter kinds of one lane: plain nearest, plain linear, or "nearest through the linear footprint"
+// (Mesa's mipmap_both path for magnified lanes: weight 1 where the linear weight exceeds 1/2, else 0).
+enum class LaneFilter { Nearest, Linear, NearestInLinear };
+
 Texel4 sampleLevelFloat(const Texture& t, const DeviceProfile& dev, uint32_t level, uint32_t layer, float u, float v,
-                        Filter filter, AddressMode au, AddressMode av) {
+                        LaneFilter filter, AddressMode au, AddressMode av) {
   const uint32_t w = t.levelWidth(level), h = t.levelHeight(level);
-  if (filter == Filter::Nearest) return t.loadFloat(level, layer, uint32_t(wrapNearest(u, w, isPot(t.width()), au)), uint32_t(wrapNearest(v, h, isPot(t.height()), av)));
+  if (filter == LaneFilter::Nearest)
+    return t.loadFloat(level, layer, uint32_t(wrapNearest(u, w, isPot(t.width()), au)),
+                       uint32_t(wrapNearest(v, h, isPot(t.height()), av)));
   Linear1D x = wrapLinear(u, w, isPot(t.width()), au), y = wrapLinear(v, h, isPot(t.height()), av);
   float a = quantizeWeight(x.w, dev.filterWeightFracBits), b = quantizeWeight(y.w, dev.filterWeightFracBits);
+  if (filter == LaneFilter::NearestInLinear) {
+    a = x.w > 0.5f ? 1.0f : 0.0f;
+    b = y.w > 0.5f ? 1.0f : 0.0f;
+  }
   Texel4 t00 = t.loadFloat(level, layer, x.i0, y.i0), t10 = t.loadFloat(level, layer, x.i1, y.i0);
   Texel4 t01 = t.loadFloat(level, layer, x.i0, y.i1), t11 = t.loadFloat(level, layer, x.i1, y.i1);
   return lerp(b, lerp(a, t00, t10), lerp(a, t01, t11));
@@ -177,62 +188,112 @@ Texel4 toFloat(Bytes4 b) { return {unorm8ToFloat(b[0]), unorm8ToFloat(b[1]), uno
 
 }  // namespace
 
-Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, float layerCoord, float lod) {
-  // LOD: explicit lod + sampler bias, then the sampler's max and min clamps.
+namespace {
+
+struct LodInfo {
+  int32_t l0, l1;
+  float f;      // mip fraction (linear mip), 0 at the clamped ends
+  bool minify;  // lambda > 0
+  uint32_t layer;
+};
+
+// LOD selection as Mesa's lod_selector + linear/nearest mip level code: explicit lod + sampler
+// bias, then max/min lod clamps; linear: floor/fraction with both levels clamped to
+// [0, last] and the fraction zeroed where clamped; nearest: rint, clamped.
+LodInfo selectLod(const Texture& tex, const SamplerDesc& s, float layerCoord, float lod) {
+  LodInfo r{};
   float lambda = s.lodBias != 0.0f ? lod + s.lodBias : lod;
   lambda = minSecondNonNan(lambda, s.maxLod);
-  lambda = maxSecondNonNan(lambda, s.minLod);
-  const bool minify = lambda > 0.0f;
-  const Filter filter = minify ? s.minFilter : s.magFilter;
-  const int32_t maxLevel = int32_t(tex.levelCount()) - 1;
-  const uint32_t layer = uint32_t(clampi(int32_t(std::nearbyint(layerCoord)), 0, int32_t(tex.layers()) - 1));
-  // Linear mip filtering runs for every lane, magnified ones too (at level 0 with fraction 0),
-  // except on single-level textures.
-  const bool mipLerp = s.mipmapMode == MipmapMode::Linear && maxLevel > 0;
-  int32_t l0 = 0, l1 = maxLevel > 0 ? 1 : 0;
-  float f = 0.0f;
-  if (minify) {
-    if (s.mipmapMode == MipmapMode::Nearest) {
-      l0 = clampi(int32_t(std::nearbyint(lambda)), 0, maxLevel);
-    } else {
-      float fl = std::floor(lambda);
-      l0 = int32_t(fl);
-      f = lambda - fl;
-      if (l0 >= maxLevel) {
-        l0 = maxLevel;
-        f = 0.0f;
-      }
-      l1 = l0 + 1 > maxLevel ? maxLevel : l0 + 1;
-    }
-    if (dev.lodFractionBits > 0) f = std::floor(f * float(1 << dev.lodFractionBits)) / float(1 << dev.lodFractionBits);
+  if (s.minLod > 0.0f) lambda = maxSecondNonNan(lambda, s.minLod);  // Mesa applies min_lod only when > 0
+  r.minify = lambda > 0.0f;
+  const int32_t last = int32_t(tex.levelCount()) - 1;
+  r.layer = uint32_t(clampi(int32_t(std::nearbyint(layerCoord)), 0, int32_t(tex.layers()) - 1));
+  if (last == 0) return r;  // single level: no mip filtering at all
+  if (s.mipmapMode == MipmapMode::Nearest) {
+    r.l0 = r.l1 = clampi(int32_t(std::nearbyint(lambda)), 0, last);
+    return r;
   }
-  const bool fixed = dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM &&
+  float fl = std::floor(lambda);
+  r.l0 = ifloor(lambda);
+  r.f = lambda - fl;
+  r.l1 = r.l0 + 1;
+  if (r.l0 < 0) { r.l0 = r.l1 = 0; r.f = 0.0f; }
+  if (r.l0 >= last) { r.l0 = r.l1 = last; r.f = 0.0f; }
+  return r;
+}
+
+struct VectorFlags {
+  bool needLerp = false;    // some lane has a mip fraction > 0
+  bool needLinear = false;  // some lane needs the linear filter (mixed mag/min only)
+};
+
+bool laneWantsLinear(const SamplerDesc& s, bool minify) {
+  return (minify ? s.minFilter : s.magFilter) == Filter::Linear;
+}
+
+Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, const LodInfo& L,
+                 VectorFlags vf) {
+  const bool mipLinear = s.mipmapMode == MipmapMode::Linear && tex.levelCount() > 1;
+  const bool mixed = s.minFilter != s.magFilter;
+  const bool fixed = dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&
                      s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat;
-  if (fixed) {
-    Bytes4 c0 = sampleLevelFixed(tex, uint32_t(l0), layer, u, v, filter, s.addressU, s.addressV);
-    int32_t lf = int32_t(f * 256.0f);
-    if (lf == 0) return toFloat(c0);
-    Bytes4 c1 = sampleLevelFixed(tex, uint32_t(l1), layer, u, v, filter, s.addressU, s.addressV);
+  if (fixed) {  // AoS: per-lane lerp8 with weight 0 is exact, so vector grouping is invisible
+    const Filter filter = L.minify ? s.minFilter : s.magFilter;
+    Bytes4 c0 = sampleLevelFixed(tex, uint32_t(L.l0), L.layer, u, v, filter, s.addressU, s.addressV);
+    int32_t lf = int32_t(L.f * 256.0f);
+    if (!mipLinear || lf == 0) return toFloat(c0);
+    Bytes4 c1 = sampleLevelFixed(tex, uint32_t(L.l1), L.layer, u, v, filter, s.addressU, s.addressV);
     return toFloat(lerp8(c0, c1, lf));
   }
-  Texel4 c0 = sampleLevelFloat(tex, dev, uint32_t(l0), layer, u, v, filter, s.addressU, s.addressV);
-  // Mesa decides "need_lerp" per SIMD vector, so a lane whose fraction is 0 is usually still
-  // lerped (fma(0, c1 - c0, c0)): same value for finite texels, NaN when c1 - c0 is not finite.
-  // The emulator lerps whenever mip filtering is linear (per-vector grouping not modelled yet).
-  if (!mipLerp) return c0;
-  Texel4 c1 = sampleLevelFloat(tex, dev, uint32_t(l1), layer, u, v, filter, s.addressU, s.addressV);
+  LaneFilter lane;
+  int32_t l0 = L.l0, l1 = L.l1;
+  float f = L.f;
+  bool lerpLevels = mipLinear && vf.needLerp;
+  if (!mixed) {
+    lane = s.minFilter == Filter::Linear ? LaneFilter::Linear : LaneFilter::Nearest;
+  } else if (vf.needLinear) {  // combined path: linear footprint, nearest lanes by weight
+    lane = laneWantsLinear(s, L.minify) ? LaneFilter::Linear : LaneFilter::NearestInLinear;
+  } else {  // every lane nearest: the cheap path; without mip filtering when min is the linear one
+    lane = LaneFilter::Nearest;
+    if (s.minFilter == Filter::Linear) {
+      l0 = 0;
+      lerpLevels = false;
+    }
+  }
+  Texel4 c0 = sampleLevelFloat(tex, dev, uint32_t(l0), L.layer, u, v, lane, s.addressU, s.addressV);
+  if (!lerpLevels) return c0;
+  if (dev.lodFractionBits > 0) f = std::floor(f * float(1 << dev.lodFractionBits)) / float(1 << dev.lodFractionBits);
+  Texel4 c1 = sampleLevelFloat(tex, dev, uint32_t(l1), L.layer, u, v, lane, s.addressU, s.addressV);
   return lerp(f, c0, c1);
+}
+
+}  // namespace
+
+Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, float layerCoord, float lod) {
+  LodInfo L = selectLod(tex, s, layerCoord, lod);
+  VectorFlags vf{L.f > 0.0f, laneWantsLinear(s, L.minify)};  // a vector of one lane
+  return sampleOne(tex, s, dev, u, v, L, vf);
+}
+
+void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* q, float* out, size_t n,
+                     const uint32_t* vectorOf) {
+  std::vector<LodInfo> lods(n);
+  std::vector<VectorFlags> flags;
+  for (size_t i = 0; i < n; ++i) {
+    lods[i] = selectLod(tex, s, q[4 * i + 2], q[4 * i + 3]);
+    size_t g = vectorOf ? vectorOf[i] : i;
+    if (g >= flags.size()) flags.resize(g + 1);
+    flags[g].needLerp |= lods[i].f > 0.0f;
+    flags[g].needLinear |= laneWantsLinear(s, lods[i].minify);
+  }
+  for (size_t i = 0; i < n; ++i) {
+    Texel4 t = sampleOne(tex, s, dev, q[4 * i], q[4 * i + 1], lods[i], flags[vectorOf ? vectorOf[i] : i]);
+    std::memcpy(out + 4 * i, &t, 16);
+  }
 }
 
 Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32_t level) {
   return tex.loadFloat(uint32_t(level), uint32_t(layer), uint32_t(x), uint32_t(y));
-}
-
-void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* q, float* out, size_t n) {
-  for (size_t i = 0; i < n; ++i) {
-    Texel4 t = textureLod(tex, s, dev, q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
-    std::memcpy(out + 4 * i, &t, 16);
-  }
 }
 
 }  // namespace emu

@@ -28,12 +28,17 @@ struct SamplerDesc {
 const char* filterName(Filter f);
 const char* addressName(AddressMode a);
 
-/// textureLod(sampler2DArray, vec3(u, v, layer), lod).
+/// textureLod(sampler2DArray, vec3(u, v, layer), lod), as one lane deciding alone. Devices that decide
+/// mip lerping or mixed mag/min filtering per SIMD vector (lavapipe) can differ for lanes whose
+/// neighbours decide otherwise: use textureLodBatch with the stage's lane grouping for exact bits.
 Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, float layer, float lod);
 /// texelFetch(sampler2DArray, ivec3(x, y, layer), level); coordinates must be in range.
 Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32_t level);
 
-/// Batch form (the SIMD-facing entry): n queries of (u, v, layer, lod), results as 4 floats each.
-void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* query, float* out, size_t n);
+/// Batch form: n queries of (u, v, layer, lod), results as 4 floats each. vectorOf[i] names the SIMD
+/// vector query i runs in on the device (see DeviceProfile::samplerVector*); lanes of one vector share
+/// the "need lerp" / "need linear" decisions. nullptr: every query decides alone.
+void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* query, float* out,
+                     size_t n, const uint32_t* vectorOf = nullptr);
 
 }  // namespace emu

@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
       sub->add_flag("--finite", vo.finiteTexels, "only finite texel values (no inf/NaN)");
       sub->add_option("--filters", vo.filters,
                       "comma-separated cases: texelFetch,nearest,nearest-miplin,bilinear,trilinear,magN-minL");
+      sub->add_option("--stages", vo.stages, "comma-separated shader stages: compute,fragment (default both)");
     }
   }
   app.add_subcommand("devices", "list Vulkan devices");

@@ -13,6 +13,7 @@ struct VerifyOptions {
   bool validate = false;  // Vulkan validation layers on (errors fail the run)
   bool finiteTexels = false;  // texture: no inf/NaN texels
   std::string filters;        // texture: comma-separated filter cases to run (empty = all)
+  std::string stages;         // texture: "compute", "fragment" or both (empty = both)
 };
 
 /// Returns the process exit status: 0 when everything is bit-identical, 1 otherwise.

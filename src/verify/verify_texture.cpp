@@ -126,11 +126,23 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   vk::Kernel comp(ctx, vk::Stage::Compute, kSpv_verify_texture_comp, layout, 12);
   vk::Kernel frag(ctx, vk::Stage::Fragment, kSpv_verify_texture_frag, layout, 12, kSpv_fullscreen_vert);
-  const size_t n = opts.count;
+  // Whole SIMD vectors only: lanes past the end would be masked off on the device but still take part
+  // in its per-vector sampler decisions with undefined coordinates. Two rows of the 1024-wide
+  // fragment target... four rows: whole 4x4 stamps (rows of a stamp past the target still run).
+  const size_t n = (opts.count + 4095) / 4096 * 4096;
   vk::Buffer qBuf(ctx, n * 16), rBuf(ctx, n * 16);
   std::vector<float> q(4 * n), emuOut(4 * n), gpu(4 * n);
   uint64_t identical = 0, total = 0;
   std::mt19937 rng(uint32_t(opts.seed));
+  // The SIMD vector each work item runs in on the device: compute item i = invocation i; fragment item
+  // i = pixel (i % 1024, i / 1024) of the kernel's target.
+  std::vector<uint32_t> vectors[2] = {std::vector<uint32_t>(n), std::vector<uint32_t>(n)};
+  const uint32_t fw = uint32_t(profile.fragmentVectorW), fh = uint32_t(profile.fragmentVectorH), rowLen = 1024;
+  for (size_t i = 0; i < n; ++i) {
+    vectors[0][i] = uint32_t(i / uint32_t(profile.computeVectorLanes));
+    uint32_t x = uint32_t(i % rowLen), y = uint32_t(i / rowLen);
+    vectors[1][i] = (y / fh) * ((rowLen + fw - 1) / fw) + x / fw;
+  }
   out << std::left << std::setw(8) << "format" << std::setw(16) << "filter" << std::setw(8) << "address" << std::setw(10)
       << "stage" << std::right << std::setw(22) << "identical/total" << std::setw(10) << "max ulp" << "\n";
   for (emu::Format fmt : emu::kAllFormats) {
@@ -163,6 +175,8 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
         si.maxLod = sd.maxLod;
         vk::Sampler sampler(ctx, si);
         for (emu::Stage stage : {emu::Stage::Compute, emu::Stage::Fragment}) {
+          const char* stageName = stage == emu::Stage::Compute ? "compute" : "fragment";
+          if (!opts.stages.empty() && ("," + opts.stages + ",").find(std::string(",") + stageName + ",") == std::string::npos) continue;
           for (size_t i = 0; i < n; ++i) {
             if (fi < 0) {
               uint32_t lvl = rng() % tex.levelCount();
@@ -178,16 +192,15 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
           }
           {
             emu::DenormalScope mode(profile.denorm(stage) == emu::DenormMode::Flush);
-            for (size_t i = 0; i < n; ++i) {
-              emu::Texel4 t;
-              if (fi < 0) {
+            if (fi < 0) {
+              for (size_t i = 0; i < n; ++i) {
                 int32_t v[4];
                 std::memcpy(v, &q[4 * i], 16);
-                t = emu::texelFetch(tex, v[0], v[1], v[2], v[3]);
-              } else {
-                t = emu::textureLod(tex, sd, profile, q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
+                emu::Texel4 t = emu::texelFetch(tex, v[0], v[1], v[2], v[3]);
+                std::memcpy(&emuOut[4 * i], &t, 16);
               }
-              std::memcpy(&emuOut[4 * i], &t, 16);
+            } else {
+              emu::textureLodBatch(tex, sd, profile, q.data(), emuOut.data(), n, vectors[stage == emu::Stage::Compute ? 0 : 1].data());
             }
           }
           std::memcpy(qBuf.data(), q.data(), n * 16);
@@ -217,7 +230,7 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
               << maxUlp;
           if (firstBad < n) {
             size_t i = firstBad;
-            out << "   first diff: tex " << tex.width() << "x" << tex.height() << "x" << tex.layers() << " L" << tex.levelCount()
+            out << "   first diff #" << i << " (x " << i % 1024 << ", y " << i / 1024 << "): tex " << tex.width() << "x" << tex.height() << "x" << tex.layers() << " L" << tex.levelCount()
                 << " bias " << sd.lodBias << " lod[" << sd.minLod << "," << sd.maxLod << "] q=(" << std::setprecision(9)
                 << q[4 * i] << ", " << q[4 * i + 1] << ", " << q[4 * i + 2] << ", " << q[4 * i + 3] << ") emu=(" << emuOut[4 * i]
                 << ", " << emuOut[4 * i + 1] << ") gpu=(" << gpu[4 * i] << ", " << gpu[4 * i + 1] << ")" << std::setprecision(6);
