@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   shadetwin::VerifyOptions vo;
   auto* verify = app.add_subcommand("verify", "differential tests: emulator and C++ builds against a Vulkan device");
   verify->require_subcommand(1);
-  for (const char* what : {"math", "texture"}) {
+  for (const char* what : {"math", "texture", "mips"}) {
     auto* sub = verify->add_subcommand(what, std::string("verify ") + what);
     sub->add_option("--count", vo.count, "inputs per function / lookups per configuration")->check(CLI::Range(1, 100000000));
     sub->add_option("--seed", vo.seed, "random seed");
@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
     }
     if (verify->got_subcommand("math")) return shadetwin::verifyMath(vo, std::cout);
     if (verify->got_subcommand("texture")) return shadetwin::verifyTexture(vo, std::cout);
+    if (verify->got_subcommand("mips")) return shadetwin::verifyMips(vo, std::cout);
   } catch (const std::exception& e) {
     std::cerr << "shadetwin: error: " << e.what() << "\n";
     return 2;

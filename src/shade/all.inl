@@ -3,3 +3,4 @@
 #include "shade/prelude.h"
 #include "shade/exact_math.h"
 #include "shade/verify_kernels.h"
+#include "shade/mip.h"

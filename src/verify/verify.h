@@ -19,6 +19,7 @@ struct VerifyOptions {
 /// Returns the process exit status: 0 when everything is bit-identical, 1 otherwise.
 int verifyMath(const VerifyOptions& opts, std::ostream& out);
 int verifyTexture(const VerifyOptions& opts, std::ostream& out);
+int verifyMips(const VerifyOptions& opts, std::ostream& out);
 
 /// Distance in units in the last place between two floats (NaN vs NaN = 0, NaN vs number = huge).
 int64_t ulpDistance(float a, float b);
