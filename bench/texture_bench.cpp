@@ -49,7 +49,7 @@ void BM_EmulatorTrilinear(benchmark::State& state) {
   std::vector<float> out(4 * n);
   emu::SamplerDesc s;
   for (auto _ : state) {
-    emu::textureLodBatch(*f.tex, s, emu::lavapipeProfile(), f.queries.data(), out.data(), n);
+    emu::textureLodBatch(*f.tex, s, emu::lavapipeProfile(), emu::Stage::Compute, f.queries.data(), out.data(), n);
     benchmark::DoNotOptimize(out.data());
   }
   state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(n));

@@ -3,7 +3,14 @@
 #include <climits>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "emu/fpenv.h"
+#include "emu/lanes.h"
 
 namespace emu {
 
@@ -18,72 +25,100 @@ const char* addressName(AddressMode a) {
 
 namespace {
 
+// ---- Lane helpers: one overload per lane kind, so the float path below is one source for a single
+// lane (float / int32_t / bool: the model) and for emu lanes (the batch path). ----
+template <class F> struct LaneOf;
+template <> struct LaneOf<float> { using I = int32_t; using M = bool; };
+template <int N> struct LaneOf<F32<N>> { using I = I32<N>; using M = Mask<N>; };
+
+inline float sel(bool m, float a, float b) { return m ? a : b; }
+inline int32_t sel(bool m, int32_t a, int32_t b) { return m ? a : b; }
+template <class T, class M> T sel(M m, T a, T b) { return select(m, a, b); }
+
+inline float lfloor(float x) { return std::floor(x); }
+inline float lrint(float x) { return std::nearbyint(x); }
+inline float labs(float x) { return std::fabs(x); }
+inline float lfma(float a, float b, float c) { return std::fma(a, b, c); }
+template <int N> F32<N> lfloor(F32<N> x) { for (int i = 0; i < N; ++i) x.v[i] = __builtin_floorf(x.v[i]); return x; }
+template <int N> F32<N> lrint(F32<N> x) { for (int i = 0; i < N; ++i) x.v[i] = __builtin_nearbyintf(x.v[i]); return x; }
+template <int N> F32<N> labs(F32<N> x) { return uintBitsToFloat(floatBitsToUint(x) & 0x7fffffffu); }
+template <int N> F32<N> lfma(F32<N> a, F32<N> b, F32<N> c) { return fmaLanes(a, b, c); }
+inline float toF(int32_t i) { return float(i); }
+template <int N> F32<N> toF(I32<N> i) { return F32<N>(i); }
+
 // x86 cvttps2dq semantics (what LLVM's fptosi lowers to): out-of-range and NaN give INT_MIN.
-int32_t itrunc(float x) {
-  if (!(x > -2147483904.0f && x < 2147483648.0f)) return INT_MIN;
-  return int32_t(x);
+template <class F> typename LaneOf<F>::I ltrunc(F x) {
+  using I = typename LaneOf<F>::I;
+  auto inRange = x > -2147483904.0f && x < 2147483648.0f;
+  F safe = sel(inRange, x, F(0.0f));
+  I t;
+  if constexpr (std::is_same_v<F, float>) t = int32_t(safe);
+  else t = I(safe);
+  return sel(inRange, t, I(INT_MIN));
 }
-int32_t ifloor(float x) {
-  if (!(x > -2147483904.0f && x < 2147483648.0f)) return INT_MIN;
-  return int32_t(std::floor(x));
-}
-float fract(float x) { return x - std::floor(x); }
+template <class F> typename LaneOf<F>::I lifloor(F x) { return ltrunc(lfloor(x)); }
+template <class F> F lfract(F x) { return x - lfloor(x); }
+// minps/maxps operand order: NaN in the first operand returns the second.
+template <class F> F minSecondNonNan(F a, F b) { return sel(a < b, a, b); }
+template <class F> F maxSecondNonNan(F a, F b) { return sel(a > b, a, b); }
+
+inline int32_t imax(int32_t a, int32_t b) { return a > b ? a : b; }
+template <int N> I32<N> imax(I32<N> a, I32<N> b) { return select(a > b, a, b); }
+
 bool isPot(uint32_t n) { return (n & (n - 1)) == 0; }
 int32_t clampi(int32_t v, int32_t lo, int32_t hi) { return v < lo ? lo : (v > hi ? hi : v); }
-// minps/maxps operand order: NaN in the first operand returns the second.
-float minSecondNonNan(float a, float b) { return a < b ? a : b; }
-float maxSecondNonNan(float a, float b) { return a > b ? a : b; }
 
 // Mirror function of Mesa's SoA sampler: 2 * (x/2 - round(x/2)), absolute value, NaN -> 0.
-float mirror(float u) {
-  float c = u * 0.5f;
-  c = c - std::nearbyint(c);
-  c = std::fabs(c + c);
-  return maxSecondNonNan(c, 0.0f);
+template <class F> F mirror(F u) {
+  F c = u * 0.5f;
+  c = c - lrint(c);
+  c = labs(c + c);
+  return maxSecondNonNan(c, F(0.0f));
 }
 
-struct Linear1D {
-  int32_t i0, i1;
-  float w;
+template <class F> struct Linear1D {
+  typename LaneOf<F>::I i0, i1;
+  F w;
 };
 
-// Addressing for linear filtering, float path.
-Linear1D wrapLinear(float u, uint32_t size, bool pot, AddressMode mode) {
-  const float len = float(size);
-  const int32_t last = int32_t(size) - 1;
-  Linear1D r{};
+// Addressing for linear filtering, float path. `size` is the sampled level's size per lane;
+// `pot` is the base level's (Mesa's static pot_width / pot_height).
+template <class F> Linear1D<F> wrapLinear(F u, typename LaneOf<F>::I size, bool pot, AddressMode mode) {
+  using I = typename LaneOf<F>::I;
+  const F len = toF(size);
+  const I last = size - 1;
+  Linear1D<F> r{};
   switch (mode) {
     case AddressMode::ClampToEdge: {
-      float x = minSecondNonNan(u * len, len);
+      F x = minSecondNonNan(u * len, len);
       x = x - 0.5f;
-      x = maxSecondNonNan(x, 0.0f);
-      r.i0 = itrunc(x);
-      r.w = x - float(r.i0);
-      r.i1 = r.i0 + 1 > last ? last : r.i0 + 1;
+      x = maxSecondNonNan(x, F(0.0f));
+      r.i0 = ltrunc(x);
+      r.w = x - toF(r.i0);
+      r.i1 = sel(r.i0 + 1 > last, last, r.i0 + 1);
       break;
     }
     case AddressMode::Repeat:
       if (pot) {
-        float x = u * len - 0.5f;
-        r.i0 = ifloor(x);
-        r.w = fract(x);
+        F x = u * len - 0.5f;
+        r.i0 = lifloor(x);
+        r.w = lfract(x);
         r.i1 = (r.i0 + 1) & last;
-        r.i0 &= last;
+        r.i0 = r.i0 & last;
       } else {
-        float x = fract(u) * len - 0.5f;
-        bool neg = x < 0.0f;
-        r.i0 = ifloor(x);
-        r.w = fract(x);
-        if (neg) r.i0 = last;
-        r.i1 = r.i0 != last ? r.i0 + 1 : 0;
+        F x = lfract(u) * len - 0.5f;
+        auto neg = x < 0.0f;
+        r.i0 = sel(neg, last, lifloor(x));
+        r.w = lfract(x);
+        r.i1 = sel(r.i0 != last, r.i0 + 1, I(0));
       }
       break;
     case AddressMode::MirroredRepeat: {
-      float x = mirror(u) * len - 0.5f;
-      r.i0 = ifloor(x);
-      r.w = fract(x);
-      r.i1 = r.i0 + 1 > last ? last : r.i0 + 1;
-      r.i0 = r.i0 < 0 ? 0 : r.i0;
+      F x = mirror(u) * len - 0.5f;
+      r.i0 = lifloor(x);
+      r.w = lfract(x);
+      r.i1 = sel(r.i0 + 1 > last, last, r.i0 + 1);
+      r.i0 = sel(r.i0 < 0, I(0), r.i0);
       break;
     }
   }
@@ -91,52 +126,79 @@ Linear1D wrapLinear(float u, uint32_t size, bool pot, AddressMode mode) {
 }
 
 // Addressing for nearest filtering, float path.
-int32_t wrapNearest(float u, uint32_t size, bool pot, AddressMode mode) {
-  const float len = float(size);
-  const int32_t last = int32_t(size) - 1;
+template <class F> typename LaneOf<F>::I wrapNearest(F u, typename LaneOf<F>::I size, bool pot, AddressMode mode) {
+  using I = typename LaneOf<F>::I;
+  const F len = toF(size);
+  const I last = size - 1;
   switch (mode) {
-    case AddressMode::ClampToEdge: return clampi(itrunc(u * len), 0, last);
+    case AddressMode::ClampToEdge: {
+      I i = ltrunc(u * len);
+      return sel(i < 0, I(0), sel(i > last, last, i));
+    }
     case AddressMode::Repeat:
-      if (pot) return ifloor(u * len) & last;
-      return itrunc(std::fmin(fract(u), 0x1.fffffep-1f) * len);
+      if (pot) return lifloor(u * len) & last;
+      return ltrunc(minSecondNonNan(lfract(u), F(0x1.fffffep-1f)) * len);  // = fmin: NaN -> the constant
     case AddressMode::MirroredRepeat: {
-      int32_t i = itrunc(mirror(u) * len);
-      return i > last ? last : i;
+      I i = ltrunc(mirror(u) * len);
+      return sel(i > last, last, i);
     }
   }
-  return 0;
+  return I(0);
 }
 
-Texel4 lerp(float w, Texel4 a, Texel4 b) {
-  return {std::fma(w, b.r - a.r, a.r), std::fma(w, b.g - a.g, a.g), std::fma(w, b.b - a.b, a.b), std::fma(w, b.a - a.a, a.a)};
+template <class F> struct C4 {
+  F r, g, b, a;
+};
+
+template <class F> C4<F> lerp4(F w, C4<F> a, C4<F> b) {
+  return {lfma(w, b.r - a.r, a.r), lfma(w, b.g - a.g, a.g), lfma(w, b.b - a.b, a.b), lfma(w, b.a - a.a, a.a)};
 }
 
-float quantizeWeight(float w, int bits) {
-  if (bits <= 0) return w;
-  const float scale = float(1 << bits);
-  return std::nearbyint(w * scale) / scale;
+// Texel loads: one lane reads directly, emu lanes gather.
+inline C4<float> loadTexel(const Texture& t, int32_t level, int32_t layer, int32_t x, int32_t y) {
+  Texel4 v = t.loadFloat(uint32_t(level), uint32_t(layer), uint32_t(x), uint32_t(y));
+  return {v.r, v.g, v.b, v.a};
+}
+template <int N>
+C4<F32<N>> loadTexel(const Texture& t, I32<N> level, I32<N> layer, I32<N> x, I32<N> y) {
+  C4<F32<N>> c;
+  for (int i = 0; i < N; ++i) {
+    Texel4 v = t.loadFloat(uint32_t(level[i]), uint32_t(layer[i]), uint32_t(x[i]), uint32_t(y[i]));
+    c.r.v[i] = v.r;
+    c.g.v[i] = v.g;
+    c.b.v[i] = v.b;
+    c.a.v[i] = v.a;
+  }
+  return c;
 }
 
-// Filter kinds of one lane: plain nearest, plain linear, or "nearest through the linear footprint"
+// Filter kinds of one call: plain nearest, plain linear, or "nearest through the linear footprint"
 // (Mesa's mipmap_both path for magnified lanes: weight 1 where the linear weight exceeds 1/2, else 0).
 enum class LaneFilter { Nearest, Linear, NearestInLinear };
 
-Texel4 sampleLevelFloat(const Texture& t, const DeviceProfile& dev, uint32_t level, uint32_t layer, float u, float v,
-                        LaneFilter filter, AddressMode au, AddressMode av) {
-  const uint32_t w = t.levelWidth(level), h = t.levelHeight(level);
-  if (filter == LaneFilter::Nearest)
-    return t.loadFloat(level, layer, uint32_t(wrapNearest(u, w, isPot(t.width()), au)),
-                       uint32_t(wrapNearest(v, h, isPot(t.height()), av)));
-  Linear1D x = wrapLinear(u, w, isPot(t.width()), au), y = wrapLinear(v, h, isPot(t.height()), av);
-  float a = quantizeWeight(x.w, dev.filterWeightFracBits), b = quantizeWeight(y.w, dev.filterWeightFracBits);
-  if (filter == LaneFilter::NearestInLinear) {
-    a = x.w > 0.5f ? 1.0f : 0.0f;
-    b = y.w > 0.5f ? 1.0f : 0.0f;
-  }
-  Texel4 t00 = t.loadFloat(level, layer, x.i0, y.i0), t10 = t.loadFloat(level, layer, x.i1, y.i0);
-  Texel4 t01 = t.loadFloat(level, layer, x.i0, y.i1), t11 = t.loadFloat(level, layer, x.i1, y.i1);
-  return lerp(b, lerp(a, t00, t10), lerp(a, t01, t11));
+template <class F>
+F weight(F w, const DeviceProfile& dev, LaneFilter filter) {
+  if (filter == LaneFilter::NearestInLinear) return sel(w > 0.5f, F(1.0f), F(0.0f));
+  if (dev.filterWeightFracBits <= 0) return w;
+  const float scale = float(1 << dev.filterWeightFracBits);
+  return lrint(w * scale) * (1.0f / scale);
 }
+
+template <class F>
+C4<F> sampleLevelFloat(const Texture& t, const DeviceProfile& dev, typename LaneOf<F>::I level,
+                       typename LaneOf<F>::I layer, F u, F v, LaneFilter filter, AddressMode au, AddressMode av) {
+  using I = typename LaneOf<F>::I;
+  const I w = imax(I(int32_t(t.width())) >> level, I(1)), h = imax(I(int32_t(t.height())) >> level, I(1));
+  const bool potW = isPot(t.width()), potH = isPot(t.height());
+  if (filter == LaneFilter::Nearest)
+    return loadTexel(t, level, layer, wrapNearest(u, w, potW, au), wrapNearest(v, h, potH, av));
+  Linear1D<F> x = wrapLinear(u, w, potW, au), y = wrapLinear(v, h, potH, av);
+  F a = weight(x.w, dev, filter), b = weight(y.w, dev, filter);
+  C4<F> t00 = loadTexel(t, level, layer, x.i0, y.i0), t10 = loadTexel(t, level, layer, x.i1, y.i0);
+  C4<F> t01 = loadTexel(t, level, layer, x.i0, y.i1), t11 = loadTexel(t, level, layer, x.i1, y.i1);
+  return lerp4(b, lerp4(a, t00, t10), lerp4(a, t01, t11));
+}
+
 
 // ---- 8-bit fixed-point path (lavapipe's AoS sampler for RGBA8) ----
 struct Fixed1D {
@@ -146,7 +208,7 @@ struct Fixed1D {
 Fixed1D wrapFixed(float u, uint32_t size, bool pot, AddressMode mode) {
   const int32_t last = int32_t(size) - 1;
   Fixed1D r{};
-  if (mode == AddressMode::Repeat && !pot) u = fract(u);
+  if (mode == AddressMode::Repeat && !pot) u = lfract(u);
   float scaled = u * float(size);
   int32_t s = int32_t(std::nearbyint(scaled * 256.0f)) - 128;
   r.i0 = s >> 8;
@@ -177,7 +239,9 @@ Bytes4 lerp8(Bytes4 a, Bytes4 b, int32_t w) {
 Bytes4 sampleLevelFixed(const Texture& t, uint32_t level, uint32_t layer, float u, float v, Filter filter, AddressMode au,
                         AddressMode av) {
   const uint32_t w = t.levelWidth(level), h = t.levelHeight(level);
-  if (filter == Filter::Nearest) return t.loadBytes(level, layer, uint32_t(wrapNearest(u, w, isPot(t.width()), au)), uint32_t(wrapNearest(v, h, isPot(t.height()), av)));
+  if (filter == Filter::Nearest)
+    return t.loadBytes(level, layer, uint32_t(wrapNearest(u, int32_t(w), isPot(t.width()), au)),
+                       uint32_t(wrapNearest(v, int32_t(h), isPot(t.height()), av)));
   Fixed1D x = wrapFixed(u, w, isPot(t.width()), au), y = wrapFixed(v, h, isPot(t.height()), av);
   Bytes4 r0 = lerp8(t.loadBytes(level, layer, x.i0, y.i0), t.loadBytes(level, layer, x.i1, y.i0), x.w);
   Bytes4 r1 = lerp8(t.loadBytes(level, layer, x.i0, y.i1), t.loadBytes(level, layer, x.i1, y.i1), x.w);
@@ -214,7 +278,7 @@ LodInfo selectLod(const Texture& tex, const SamplerDesc& s, float layerCoord, fl
     return r;
   }
   float fl = std::floor(lambda);
-  r.l0 = ifloor(lambda);
+  r.l0 = lifloor(lambda);
   r.f = lambda - fl;
   r.l1 = r.l0 + 1;
   if (r.l0 < 0) { r.l0 = r.l1 = 0; r.f = 0.0f; }
@@ -226,6 +290,12 @@ struct VectorFlags {
   bool needLerp = false;    // some lane has a mip fraction > 0
   bool needLinear = false;  // some lane needs the linear filter (mixed mag/min only)
 };
+
+template <class F> F lodFraction(F f, const DeviceProfile& dev) {
+  if (dev.lodFractionBits <= 0) return f;
+  const float scale = float(1 << dev.lodFractionBits);
+  return lfloor(f * scale) * (1.0f / scale);
+}
 
 bool laneWantsLinear(const SamplerDesc& s, bool minify) {
   return (minify ? s.minFilter : s.magFilter) == Filter::Linear;
@@ -260,11 +330,49 @@ Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
       lerpLevels = false;
     }
   }
-  Texel4 c0 = sampleLevelFloat(tex, dev, uint32_t(l0), L.layer, u, v, lane, s.addressU, s.addressV);
-  if (!lerpLevels) return c0;
-  if (dev.lodFractionBits > 0) f = std::floor(f * float(1 << dev.lodFractionBits)) / float(1 << dev.lodFractionBits);
-  Texel4 c1 = sampleLevelFloat(tex, dev, uint32_t(l1), L.layer, u, v, lane, s.addressU, s.addressV);
-  return lerp(f, c0, c1);
+  const int32_t layer = int32_t(L.layer);
+  C4<float> c = sampleLevelFloat<float>(tex, dev, l0, layer, u, v, lane, s.addressU, s.addressV);
+  if (lerpLevels) {
+    C4<float> c1 = sampleLevelFloat<float>(tex, dev, l1, layer, u, v, lane, s.addressU, s.addressV);
+    c = lerp4(lodFraction(f, dev), c, c1);
+  }
+  return {c.r, c.g, c.b, c.a};
+}
+
+// Eight lanes of the float path with equal mag/min filters: the same template code as the one-lane
+// model above, on emu lanes (tests/texture_test.cpp checks the two agree bit for bit).
+constexpr int kLanes = 8;
+void sampleBlock(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* q, const LodInfo* L,
+                 const bool* lerpLane, float* out, int count) {
+  using F = F32<kLanes>;
+  using I = I32<kLanes>;
+  F u(0.0f), v(0.0f), f(0.0f);
+  I l0(0), l1(0), layer(0);
+  Mask<kLanes> lerpMask(false);
+  bool anyLerp = false;
+  for (int i = 0; i < count; ++i) {
+    u.v[i] = q[4 * i];
+    v.v[i] = q[4 * i + 1];
+    f.v[i] = L[i].f;
+    l0.v[i] = L[i].l0;
+    l1.v[i] = L[i].l1;
+    layer.v[i] = int32_t(L[i].layer);
+    lerpMask.v[i] = lerpLane[i] ? -1 : 0;
+    anyLerp |= lerpLane[i];
+  }
+  const LaneFilter lane = s.minFilter == Filter::Linear ? LaneFilter::Linear : LaneFilter::Nearest;
+  C4<F> c = sampleLevelFloat<F>(tex, dev, l0, layer, u, v, lane, s.addressU, s.addressV);
+  if (anyLerp) {
+    C4<F> c1 = sampleLevelFloat<F>(tex, dev, l1, layer, u, v, lane, s.addressU, s.addressV);
+    C4<F> m = lerp4(lodFraction(f, dev), c, c1);
+    c = {select(lerpMask, m.r, c.r), select(lerpMask, m.g, c.g), select(lerpMask, m.b, c.b), select(lerpMask, m.a, c.a)};
+  }
+  for (int i = 0; i < count; ++i) {
+    out[4 * i] = c.r[i];
+    out[4 * i + 1] = c.g[i];
+    out[4 * i + 2] = c.b[i];
+    out[4 * i + 3] = c.a[i];
+  }
 }
 
 }  // namespace
@@ -275,21 +383,47 @@ Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile&
   return sampleOne(tex, s, dev, u, v, L, vf);
 }
 
-void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* q, float* out, size_t n,
-                     const uint32_t* vectorOf) {
+void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, Stage stage, const float* q,
+                     float* out, size_t n, const uint32_t* vectorOf) {
+  const bool flush = dev.denorm(stage) == DenormMode::Flush;
   std::vector<LodInfo> lods(n);
-  std::vector<VectorFlags> flags;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    DenormalScope mode(flush);
+    for (size_t i = r.begin(); i != r.end(); ++i) lods[i] = selectLod(tex, s, q[4 * i + 2], q[4 * i + 3]);
+  });
+  std::vector<VectorFlags> flags(vectorOf ? 0 : n);
   for (size_t i = 0; i < n; ++i) {
-    lods[i] = selectLod(tex, s, q[4 * i + 2], q[4 * i + 3]);
     size_t g = vectorOf ? vectorOf[i] : i;
     if (g >= flags.size()) flags.resize(g + 1);
     flags[g].needLerp |= lods[i].f > 0.0f;
     flags[g].needLinear |= laneWantsLinear(s, lods[i].minify);
   }
-  for (size_t i = 0; i < n; ++i) {
-    Texel4 t = sampleOne(tex, s, dev, q[4 * i], q[4 * i + 1], lods[i], flags[vectorOf ? vectorOf[i] : i]);
-    std::memcpy(out + 4 * i, &t, 16);
-  }
+  const bool mixed = s.minFilter != s.magFilter;
+  const bool fixed = dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&
+                     s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat;
+  const bool mipLinear = s.mipmapMode == MipmapMode::Linear && tex.levelCount() > 1;
+  const size_t blocks = (n + kLanes - 1) / kLanes;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 256), [&](const tbb::blocked_range<size_t>& r) {
+    DenormalScope mode(flush);
+    for (size_t b = r.begin(); b != r.end(); ++b) {
+      const size_t i0 = b * kLanes;
+      const int count = int(std::min<size_t>(kLanes, n - i0));
+      if (mixed || fixed) {  // per-lane paths
+        for (int k = 0; k < count; ++k) {
+          size_t i = i0 + size_t(k);
+          Texel4 t = sampleOne(tex, s, dev, q[4 * i], q[4 * i + 1], lods[i], flags[vectorOf ? vectorOf[i] : i]);
+          std::memcpy(out + 4 * i, &t, 16);
+        }
+        continue;
+      }
+      bool lerpLane[kLanes] = {};
+      for (int k = 0; k < count; ++k) {
+        size_t i = i0 + size_t(k);
+        lerpLane[k] = mipLinear && flags[vectorOf ? vectorOf[i] : i].needLerp;
+      }
+      sampleBlock(tex, s, dev, q + 4 * i0, lods.data() + i0, lerpLane, out + 4 * i0, count);
+    }
+  });
 }
 
 Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32_t level) {

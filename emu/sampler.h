@@ -35,10 +35,12 @@ Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile&
 /// texelFetch(sampler2DArray, ivec3(x, y, layer), level); coordinates must be in range.
 Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32_t level);
 
-/// Batch form: n queries of (u, v, layer, lod), results as 4 floats each. vectorOf[i] names the SIMD
-/// vector query i runs in on the device (see DeviceProfile::samplerVector*); lanes of one vector share
-/// the "need lerp" / "need linear" decisions. nullptr: every query decides alone.
-void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* query, float* out,
-                     size_t n, const uint32_t* vectorOf = nullptr);
+/// Batch form: n queries of (u, v, layer, lod), results as 4 floats each, run on 8-lane SIMD blocks
+/// (float path, equal mag/min filters) and TBB threads, under the stage's denormal mode. vectorOf[i]
+/// names the device SIMD vector query i runs in (DeviceProfile::computeVectorLanes /
+/// fragmentVector*); lanes of one vector share the "need lerp" / "need linear" decisions. nullptr:
+/// every query decides alone. Results do not depend on the thread count.
+void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, Stage stage, const float* query,
+                     float* out, size_t n, const uint32_t* vectorOf = nullptr);
 
 }  // namespace emu

@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
     sub->add_option("--device", vo.device, "Vulkan device (substring of its name; default lavapipe)");
     sub->add_flag("--validate", vo.validate, "enable Vulkan validation layers; any error fails the run");
     if (std::string(what) == "texture") {
-      sub->add_flag("--finite", vo.finiteTexels, "only finite texel values (no inf/NaN)");
+      sub->add_flag("--finite", vo.finiteTexels, "only finite normal texel values (no inf, NaN or denormals)");
       sub->add_option("--filters", vo.filters,
                       "comma-separated cases: texelFetch,nearest,nearest-miplin,bilinear,trilinear,magN-minL");
       sub->add_option("--stages", vo.stages, "comma-separated shader stages: compute,fragment (default both)");

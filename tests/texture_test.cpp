@@ -98,3 +98,102 @@ TEST(DeviceProfile, LookupAndUnknownNames) {
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Fragment), emu::DenormMode::Flush);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Compute), emu::DenormMode::Preserve);
 }
+
+// ---- batch path (8 lanes + TBB) against the one-lane model ----
+#include <tbb/global_control.h>
+
+#include <random>
+
+namespace {
+emu::Texture randomFloatTexture(emu::Format fmt, uint32_t w, uint32_t h, std::mt19937& rng) {
+  std::vector<std::vector<uint8_t>> levels;
+  const uint32_t tb = emu::formatInfo(fmt).texelBytes;
+  for (uint32_t l = 0; l < emu::Texture::fullChainLevels(w, h); ++l) {
+    uint32_t lw = std::max(1u, w >> l), lh = std::max(1u, h >> l);
+    std::vector<uint8_t> b(size_t(lw) * lh * tb);
+    for (size_t i = 0; i < b.size(); i += 4) {
+      float v = std::uniform_real_distribution<float>(-3.0f, 3.0f)(rng);
+      if (fmt == emu::Format::RGBA16F) {
+        uint16_t h0 = emu::floatToHalf(v), h1 = emu::floatToHalf(-v);
+        std::memcpy(&b[i], &h0, 2);
+        std::memcpy(&b[i + 2], &h1, 2);
+      } else if (fmt == emu::Format::RGBA8_UNORM) {
+        for (int c = 0; c < 4; ++c) b[i + c] = uint8_t(rng());
+      } else {
+        std::memcpy(&b[i], &v, 4);
+      }
+    }
+    levels.push_back(std::move(b));
+  }
+  return emu::Texture(fmt, w, h, 1, std::move(levels));
+}
+}  // namespace
+
+TEST(SamplerBatch, EightLanePathEqualsOneLaneModelEverywhere) {
+  std::mt19937 rng(17);
+  const size_t n = 1003;  // a tail shorter than 8 lanes
+  std::vector<float> q(4 * n), out(4 * n);
+  for (emu::Format fmt : emu::kAllFormats)
+    for (auto mode : {emu::AddressMode::ClampToEdge, emu::AddressMode::Repeat, emu::AddressMode::MirroredRepeat})
+      for (int f = 0; f < 4; ++f) {
+        emu::Texture tex = randomFloatTexture(fmt, 13 + f, 8, rng);
+        emu::SamplerDesc s;
+        s.addressU = s.addressV = mode;
+        s.minFilter = (f & 1) ? emu::Filter::Linear : emu::Filter::Nearest;
+        s.magFilter = f == 3 ? emu::Filter::Nearest : s.minFilter;  // f == 3: mixed
+        s.mipmapMode = (f & 2) ? emu::MipmapMode::Linear : emu::MipmapMode::Nearest;
+        for (size_t i = 0; i < n; ++i) {
+          q[4 * i] = std::uniform_real_distribution<float>(-2.0f, 3.0f)(rng);
+          q[4 * i + 1] = std::uniform_real_distribution<float>(-2.0f, 3.0f)(rng);
+          q[4 * i + 2] = 0.0f;
+          q[4 * i + 3] = (i % 5 == 0) ? float(i % 4) : std::uniform_real_distribution<float>(-1.0f, 5.0f)(rng);
+        }
+        for (const emu::DeviceProfile* dev : {&emu::lavapipeProfile(), &emu::nvidiaProfile()}) {
+          emu::textureLodBatch(tex, s, *dev, emu::Stage::Compute, q.data(), out.data(), n);
+          for (size_t i = 0; i < n; ++i) {
+            emu::Texel4 t = emu::textureLod(tex, s, *dev, q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
+            ASSERT_EQ(0, std::memcmp(&t, &out[4 * i], 16))
+                << emu::formatInfo(fmt).name << " " << emu::addressName(mode) << " case " << f << " query " << i;
+          }
+        }
+      }
+}
+
+TEST(SamplerBatch, ResultsDoNotDependOnThreadCount) {
+  std::mt19937 rng(23);
+  emu::Texture tex = randomFloatTexture(emu::Format::RGBA32F, 64, 64, rng);
+  const size_t n = 50000;
+  std::vector<float> q(4 * n);
+  for (auto& v : q) v = std::uniform_real_distribution<float>(-1.0f, 6.0f)(rng);
+  std::vector<uint32_t> vec(n);
+  for (size_t i = 0; i < n; ++i) vec[i] = uint32_t(i / 8);
+  emu::SamplerDesc s;
+  std::vector<std::vector<float>> outs;
+  for (int threads : {1, 2, 16}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    outs.emplace_back(4 * n);
+    emu::textureLodBatch(tex, s, emu::lavapipeProfile(), emu::Stage::Fragment, q.data(), outs.back().data(), n, vec.data());
+  }
+  EXPECT_EQ(0, std::memcmp(outs[0].data(), outs[1].data(), 16 * n));
+  EXPECT_EQ(0, std::memcmp(outs[0].data(), outs[2].data(), 16 * n));
+}
+
+TEST(SamplerBatch, LanesOfOneVectorShareTheLerpDecision) {
+  // The probe experiment: level 1 is +inf, one lane at lod 0.5, the rest at lod 0. Lanes in the
+  // probe's vector lerp with fraction 0 -> fma(0, inf - 1, 1) = NaN; other vectors return 1.
+  emu::Texture tex(emu::Format::R32F, 2, 2, 1, {floats({1, 1, 1, 1}), floats({INFINITY})});
+  emu::SamplerDesc s;
+  s.minFilter = s.magFilter = emu::Filter::Nearest;
+  const size_t n = 16;
+  std::vector<float> q(4 * n, 0.25f), out(4 * n);
+  for (size_t i = 0; i < n; ++i) q[4 * i + 3] = i == 3 ? 0.5f : 0.0f;
+  std::vector<uint32_t> vec(n);
+  for (size_t i = 0; i < n; ++i) vec[i] = uint32_t(i / 8);
+  emu::textureLodBatch(tex, s, emu::lavapipeProfile(), emu::Stage::Compute, q.data(), out.data(), n, vec.data());
+  EXPECT_TRUE(std::isinf(out[4 * 3]));
+  for (size_t i = 0; i < 8; ++i)
+    if (i != 3) EXPECT_TRUE(std::isnan(out[4 * i])) << i;
+  for (size_t i = 8; i < 16; ++i) EXPECT_EQ(out[4 * i], 1.0f) << i;
+  emu::textureLodBatch(tex, s, emu::lavapipeProfile(), emu::Stage::Compute, q.data(), out.data(), n, nullptr);
+  EXPECT_EQ(out[0], 1.0f);  // per-lane decisions: no lerp at fraction 0
+}

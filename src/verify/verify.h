@@ -11,7 +11,7 @@ struct VerifyOptions {
   uint64_t seed = 1;
   std::string device;     // Vulkan device name substring; empty = lavapipe
   bool validate = false;  // Vulkan validation layers on (errors fail the run)
-  bool finiteTexels = false;  // texture: no inf/NaN texels
+  bool finiteTexels = false;  // texture: no inf, NaN or denormal texels
   std::string filters;        // texture: comma-separated filter cases to run (empty = all)
   std::string stages;         // texture: "compute", "fragment" or both (empty = both)
 };

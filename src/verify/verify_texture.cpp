@@ -42,7 +42,7 @@ VkSamplerAddressMode vkAddress(emu::AddressMode a) {
 // A random float texel value: mostly in [-2, 2], some outside [0, 1) by far, a few inf/NaN/denormal.
 float randomValue(std::mt19937& rng, bool finite) {
   uint32_t pick = rng() % 1000;
-  if (finite && pick < 3) pick = 500;
+  if (finite && pick < 4) pick = 500;  // --finite: no inf, NaN or denormal texels
   if (pick == 0) return INFINITY;
   if (pick == 1) return -INFINITY;
   if (pick == 2) return NAN;
@@ -200,7 +200,7 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
                 std::memcpy(&emuOut[4 * i], &t, 16);
               }
             } else {
-              emu::textureLodBatch(tex, sd, profile, q.data(), emuOut.data(), n, vectors[stage == emu::Stage::Compute ? 0 : 1].data());
+              emu::textureLodBatch(tex, sd, profile, stage, q.data(), emuOut.data(), n, vectors[stage == emu::Stage::Compute ? 0 : 1].data());
             }
           }
           std::memcpy(qBuf.data(), q.data(), n * 16);
