@@ -2,6 +2,7 @@
 
 #include <climits>
 #include <cmath>
+#include <atomic>
 #include <cstring>
 #include <type_traits>
 #include <vector>
@@ -162,6 +163,20 @@ inline C4<float> loadTexel(const Texture& t, int32_t level, int32_t layer, int32
 template <int N>
 C4<F32<N>> loadTexel(const Texture& t, I32<N> level, I32<N> layer, I32<N> x, I32<N> y) {
   C4<F32<N>> c;
+  if (t.format() == Format::RGBA32F) {  // the common HDR case: offsets as lanes, direct 16-byte loads
+    const I32<N> w = imax(I32<N>(int32_t(t.width())) >> level, I32<N>(1));
+    const I32<N> h = imax(I32<N>(int32_t(t.height())) >> level, I32<N>(1));
+    const I32<N> texel = (layer * h + y) * w + x;
+    for (int i = 0; i < N; ++i) {
+      float v[4];
+      std::memcpy(v, t.levels()[size_t(level[i])].data() + size_t(uint32_t(texel[i])) * 16, 16);
+      c.r.v[i] = v[0];
+      c.g.v[i] = v[1];
+      c.b.v[i] = v[2];
+      c.a.v[i] = v[3];
+    }
+    return c;
+  }
   for (int i = 0; i < N; ++i) {
     Texel4 v = t.loadFloat(uint32_t(level[i]), uint32_t(layer[i]), uint32_t(x[i]), uint32_t(y[i]));
     c.r.v[i] = v.r;
@@ -386,18 +401,27 @@ Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile&
 void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, Stage stage, const float* q,
                      float* out, size_t n, const uint32_t* vectorOf) {
   const bool flush = dev.denorm(stage) == DenormMode::Flush;
-  std::vector<LodInfo> lods(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
-    DenormalScope mode(flush);
-    for (size_t i = r.begin(); i != r.end(); ++i) lods[i] = selectLod(tex, s, q[4 * i + 2], q[4 * i + 3]);
-  });
-  std::vector<VectorFlags> flags(vectorOf ? 0 : n);
-  for (size_t i = 0; i < n; ++i) {
-    size_t g = vectorOf ? vectorOf[i] : i;
-    if (g >= flags.size()) flags.resize(g + 1);
-    flags[g].needLerp |= lods[i].f > 0.0f;
-    flags[g].needLinear |= laneWantsLinear(s, lods[i].minify);
+  // Per-vector decisions (only when lanes are grouped): bit 0 need lerp, bit 1 need linear. Vectors
+  // may span blocks (fragment layouts), hence the atomic OR.
+  std::vector<uint8_t> flags;
+  if (vectorOf) {
+    uint32_t groups = 0;
+    for (size_t i = 0; i < n; ++i) groups = std::max(groups, vectorOf[i] + 1);
+    flags.assign(groups, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 8192), [&](const tbb::blocked_range<size_t>& r) {
+      DenormalScope mode(flush);
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        LodInfo L = selectLod(tex, s, q[4 * i + 2], q[4 * i + 3]);
+        uint8_t bits = uint8_t((L.f > 0.0f ? 1 : 0) | (laneWantsLinear(s, L.minify) ? 2 : 0));
+        if (bits) std::atomic_ref<uint8_t>(flags[vectorOf[i]]).fetch_or(bits, std::memory_order_relaxed);
+      }
+    });
   }
+  auto vectorFlags = [&](size_t i, const LodInfo& L) {
+    if (!vectorOf) return VectorFlags{L.f > 0.0f, laneWantsLinear(s, L.minify)};
+    uint8_t b = flags[vectorOf[i]];
+    return VectorFlags{(b & 1) != 0, (b & 2) != 0};
+  };
   const bool mixed = s.minFilter != s.magFilter;
   const bool fixed = dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&
                      s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat;
@@ -408,20 +432,19 @@ void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfi
     for (size_t b = r.begin(); b != r.end(); ++b) {
       const size_t i0 = b * kLanes;
       const int count = int(std::min<size_t>(kLanes, n - i0));
-      if (mixed || fixed) {  // per-lane paths
-        for (int k = 0; k < count; ++k) {
-          size_t i = i0 + size_t(k);
-          Texel4 t = sampleOne(tex, s, dev, q[4 * i], q[4 * i + 1], lods[i], flags[vectorOf ? vectorOf[i] : i]);
-          std::memcpy(out + 4 * i, &t, 16);
-        }
-        continue;
-      }
+      LodInfo lods[kLanes];
       bool lerpLane[kLanes] = {};
       for (int k = 0; k < count; ++k) {
-        size_t i = i0 + size_t(k);
-        lerpLane[k] = mipLinear && flags[vectorOf ? vectorOf[i] : i].needLerp;
+        const size_t i = i0 + size_t(k);
+        lods[k] = selectLod(tex, s, q[4 * i + 2], q[4 * i + 3]);
+        if (mixed || fixed) {  // per-lane paths
+          Texel4 t = sampleOne(tex, s, dev, q[4 * i], q[4 * i + 1], lods[k], vectorFlags(i, lods[k]));
+          std::memcpy(out + 4 * i, &t, 16);
+        } else {
+          lerpLane[k] = mipLinear && vectorFlags(i, lods[k]).needLerp;
+        }
       }
-      sampleBlock(tex, s, dev, q + 4 * i0, lods.data() + i0, lerpLane, out + 4 * i0, count);
+      if (!mixed && !fixed) sampleBlock(tex, s, dev, q + 4 * i0, lods, lerpLane, out + 4 * i0, count);
     }
   });
 }
