@@ -14,6 +14,7 @@ struct VerifyOptions {
   bool finiteTexels = false;  // texture: no inf, NaN or denormal texels
   std::string filters;        // texture: comma-separated filter cases to run (empty = all)
   std::string stages;         // texture: "compute", "fragment" or both (empty = both)
+  std::string image;          // texture: sample this image file (MIP chain from the shared kernel) instead of random textures
 };
 
 /// Returns the process exit status: 0 when everything is bit-identical, 1 otherwise.

@@ -12,6 +12,8 @@
 #include "emu/device_profile.h"
 #include "emu/fpenv.h"
 #include "emu/sampler.h"
+#include "image_io.h"
+#include "mips.h"
 #include "verify/verify.h"
 #include "vk/context.h"
 
@@ -134,6 +136,14 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
   std::vector<float> q(4 * n), emuOut(4 * n), gpu(4 * n);
   uint64_t identical = 0, total = 0;
   std::mt19937 rng(uint32_t(opts.seed));
+  std::unique_ptr<ImageRGBA> image;
+  std::unique_ptr<std::vector<std::vector<float>>> imageChain;
+  if (!opts.image.empty()) {
+    image = std::make_unique<ImageRGBA>(loadImageRGBA(opts.image));
+    imageChain = std::make_unique<std::vector<std::vector<float>>>(mipChainCpu(image->texels, image->width, image->height, 1));
+    out << "image: " << opts.image << " (" << image->width << "x" << image->height << ", " << imageChain->size()
+        << " levels from the shared MIP kernel)\n";
+  }
   // The SIMD vector each work item runs in on the device: compute item i = invocation i; fragment item
   // i = pixel (i % 1024, i / 1024) of the kernel's target.
   std::vector<uint32_t> vectors[2] = {std::vector<uint32_t>(n), std::vector<uint32_t>(n)};
@@ -151,7 +161,8 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
         if (fi < 0 && am != emu::AddressMode::ClampToEdge) continue;
         const std::string caseName = fi < 0 ? "texelFetch" : kFilters[fi].name;
         if (!opts.filters.empty() && ("," + opts.filters + ",").find("," + caseName + ",") == std::string::npos) continue;
-        emu::Texture tex = randomTexture(fmt, rng, opts.finiteTexels);
+        emu::Texture tex = image ? packTexture(fmt, image->width, image->height, 1, *imageChain)
+                                 : randomTexture(fmt, rng, opts.finiteTexels);
         vk::Image image(ctx, vkFormat(fmt), tex.width(), tex.height(), tex.layers(), tex.levels(), emu::formatInfo(fmt).texelBytes);
         emu::SamplerDesc sd;
         if (fi >= 0) {
