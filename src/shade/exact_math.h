@@ -225,13 +225,26 @@ Float exExp(Float x) {
 // division, |t| <= 0.1716), series 2t(1 + t^2/3 + t^4/5 + t^6/7 + t^8/9) (next term < 2^-33).
 
 struct XmLogParts {
-  Float e;    // exponent, exact
-  Float lnm;  // ln(m)
-  Mask nan;   // x < 0 or NaN
-  Mask zero;  // x == 0 (or flushed)
-  Mask inf;   // x == +inf
+  Float e;      // exponent, exact
+  Float lnmHi;  // ln(m) = lnmHi + lnmLo (float-float)
+  Float lnmLo;
+  Mask nan;     // x < 0 or NaN
+  Mask zero;    // x == 0 (or flushed)
+  Mask inf;     // x == +inf
 };
 
+// 1/d for d in [1.5, 2.5] to ~1e-9 relative: bit-trick seed, three Newton steps (mul/add only).
+Float xmRcpApprox(Float d) {
+  PRECISE Float x = uintBitsToFloat(0x7ef311c3u - floatBitsToUint(d));
+  x = x * (2.0f - d * x);
+  x = x * (2.0f - d * x);
+  x = x * (2.0f - d * x);
+  return x;
+}
+
+// Derivation: ln m = 2 atanh t, t = (m-1)/(m+1). t = tHi + tLo with tHi = exDiv(m-1, m+1) and
+// tLo = (m - 1 - tHi (m+1)) / (m+1), the residual formed exactly (m+1 as a TwoSum, tHi times it by
+// Dekker), so ln m = 2 tHi + (2 tLo + 2 tHi w Q(w)) carries ~40 bits; Q's rounding is scaled by w <= 0.03.
 XmLogParts xmLogParts(Float x) {
   Uint ux = floatBitsToUint(x);
   Mask nan = x != x || ux > 0x80000000u;
@@ -245,12 +258,25 @@ XmLogParts xmLogParts(Float x) {
   Mask big = mb > 0x3fb504f3u;  // m > sqrt(2): halve m
   Int e = Int(u >> 23u) - 127 - select(sub, 24, 0) + select(big, 1, 0);
   PRECISE Float m = uintBitsToFloat(select(big, mb - 0x00800000u, mb));
-  PRECISE Float t = exDiv(m - 1.0f, m + 1.0f);
-  PRECISE Float w = t * t;
+  PRECISE Float num = m - 1.0f;  // exact (Sterbenz)
+  XmFF den = xmTwoSum(m, 1.0f);
+  PRECISE Float tHi = exDiv(num, den.hi);
+  XmFF p = xmTwoProduct(tHi, den.hi);
+  PRECISE Float r = ((num - p.hi) - p.lo) - tHi * den.lo;
+  PRECISE Float tLo = r * xmRcpApprox(den.hi);
+  PRECISE Float w = tHi * tHi;
   PRECISE Float q = w * (0.333333343f + w * (0.200000003f + w * (0.142857149f + w * 0.111111112f)));
-  PRECISE Float t2 = t + t;
-  PRECISE Float lnm = t2 + t2 * q;
-  return XmLogParts(Float(e), lnm, nan, zero, inf);
+  PRECISE Float hi = tHi + tHi;
+  PRECISE Float lo = (tLo + tLo) + hi * q;
+  XmFF l = xmTwoSum(hi, lo);
+  return XmLogParts(Float(e), l.hi, l.lo, nan, zero, inf);
+}
+
+// log2(m) = ln(m) * log2(e) as a float-float product; log2 e = 1.44269502 + 1.92596303e-08.
+XmFF xmLog2m(XmLogParts L) {
+  XmFF p = xmTwoProduct(L.lnmHi, 1.44269502f);
+  PRECISE Float lo = p.lo + (L.lnmHi * 1.92596303e-08f + L.lnmLo * 1.44269502f);
+  return xmTwoSum(p.hi, lo);
 }
 
 Float xmLogSpecial(XmLogParts L, Float v) {
@@ -261,32 +287,40 @@ Float xmLogSpecial(XmLogParts L, Float v) {
 
 Float exLog2(Float x) {
   XmLogParts L = xmLogParts(x);
-  // log2 e = 1.44269502 + 1.92596303e-08
-  PRECISE Float v = L.e + (L.lnm * 1.44269502f + L.lnm * 1.92596303e-08f);
+  XmFF l2 = xmLog2m(L);
+  XmFF s = xmTwoSum(L.e, l2.hi);
+  PRECISE Float v = s.hi + (s.lo + l2.lo);
   return xmLogSpecial(L, v);
 }
 
 Float exLog(Float x) {
   XmLogParts L = xmLogParts(x);
-  PRECISE Float v = L.e * 0.693145751953125f + (L.lnm + L.e * 1.42860677e-06f);
+  // ln x = e ln2 + ln m, ln2 = 0.693145751953125 (15 bits: e * hi is exact) + 1.42860677e-06
+  XmFF s = xmTwoSum(L.e * 0.693145751953125f, L.lnmHi);
+  PRECISE Float v = s.hi + (s.lo + (L.lnmLo + L.e * 1.42860677e-06f));
   return xmLogSpecial(L, v);
 }
 
-// pow(x, y) = 2^(y log2 x) for x >= 0 (x < 0 gives NaN; GLSL leaves it undefined). y*e is formed
-// exactly (Veltkamp split of y times the small integer e), y*log2(m) as a Dekker product, so the
-// error does not grow with the exponent e; it grows with |y log2 m| (docs/DESIGN.md).
+// pow(x, y) = 2^(y log2 x) for x >= 0 (x < 0 gives NaN; GLSL leaves it undefined); zero bases as C99.
+// y*e is formed exactly (Veltkamp split of y times the small integer e), y*log2(m) as a Dekker product
+// of y with the float-float log2(m), so the exponent y log2 x carries ~40 bits and the error does not
+// grow with |y log2 x| until the result over- or underflows.
 Float exPow(Float x, Float y) {
   XmLogParts L = xmLogParts(x);
   PRECISE Float yc = clamp(select(y != y, 0.0f, y), -4294967296.0f, 4294967296.0f);
   XmFF Y = xmSplit(yc);
-  PRECISE Float l2m = L.lnm * 1.44269502f + L.lnm * 1.92596303e-08f;
-  XmFF C = xmTwoProduct(yc, l2m);
+  XmFF l2 = xmLog2m(L);
+  XmFF C = xmTwoProduct(yc, l2.hi);
   XmFF S = xmTwoSum(Y.hi * L.e, C.hi);
   PRECISE Float n = floor(clamp(S.hi, -300.0f, 300.0f) + 0.5f);
-  PRECISE Float f = ((S.hi - n) + S.lo) + (Y.lo * L.e + C.lo);
+  PRECISE Float f = ((S.hi - n) + S.lo) + ((Y.lo * L.e + C.lo) + yc * l2.lo);
   PRECISE Float v = xmScale2(xmExp2Poly(clamp(f, -0.6f, 0.6f)), clamp(n, -254.0f, 254.0f));
   Float inf = uintBitsToFloat(0x7f800000u);
-  v = select(L.zero, select(y < 0.0f, inf, 0.0f), v);
+  // C99 for a zero base: +-0 or +-inf, negative only for x = -0 and an odd integer y.
+  Mask oddInt = abs(y) < 16777216.0f && floor(y) == y && (Int(y) & 1) != 0;
+  Float zeroPow = select(y < 0.0f, inf, 0.0f);
+  zeroPow = select(floatBitsToUint(x) == 0x80000000u && oddInt, -zeroPow, zeroPow);
+  v = select(L.zero, zeroPow, v);
   v = select(L.inf, select(y < 0.0f, 0.0f, inf), v);
   v = select(L.nan || y != y, uintBitsToFloat(0x7fc00000u), v);
   return select(y == 0.0f || x == 1.0f, 1.0f, v);
