@@ -304,6 +304,7 @@ LodInfo selectLod(const Texture& tex, const SamplerDesc& s, float layerCoord, fl
 struct VectorFlags {
   bool needLerp = false;    // some lane has a mip fraction > 0
   bool needLinear = false;  // some lane needs the linear filter (mixed mag/min only)
+  bool anyMinify = false;   // some lane is minified (the "both" path lerps levels on this)
 };
 
 template <class F> F lodFraction(F f, const DeviceProfile& dev) {
@@ -336,8 +337,10 @@ Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
   bool lerpLevels = mipLinear && vf.needLerp;
   if (!mixed) {
     lane = s.minFilter == Filter::Linear ? LaneFilter::Linear : LaneFilter::Nearest;
-  } else if (vf.needLinear) {  // combined path: linear footprint, nearest lanes by weight
+  } else if (vf.needLinear) {  // combined path: linear footprint, nearest lanes by weight;
+    // it lerps levels when any lane of the vector is minified (Mesa: need_lerp = any(lod_positive))
     lane = laneWantsLinear(s, L.minify) ? LaneFilter::Linear : LaneFilter::NearestInLinear;
+    lerpLevels = mipLinear && vf.anyMinify;
   } else {  // every lane nearest: the cheap path; without mip filtering when min is the linear one
     lane = LaneFilter::Nearest;
     if (s.minFilter == Filter::Linear) {
@@ -394,7 +397,7 @@ void sampleBlock(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
 
 Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, float layerCoord, float lod) {
   LodInfo L = selectLod(tex, s, layerCoord, lod);
-  VectorFlags vf{L.f > 0.0f, laneWantsLinear(s, L.minify)};  // a vector of one lane
+  VectorFlags vf{L.f > 0.0f, laneWantsLinear(s, L.minify), L.minify};  // a vector of one lane
   return sampleOne(tex, s, dev, u, v, L, vf);
 }
 
@@ -412,15 +415,15 @@ void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfi
       DenormalScope mode(flush);
       for (size_t i = r.begin(); i != r.end(); ++i) {
         LodInfo L = selectLod(tex, s, q[4 * i + 2], q[4 * i + 3]);
-        uint8_t bits = uint8_t((L.f > 0.0f ? 1 : 0) | (laneWantsLinear(s, L.minify) ? 2 : 0));
+        uint8_t bits = uint8_t((L.f > 0.0f ? 1 : 0) | (laneWantsLinear(s, L.minify) ? 2 : 0) | (L.minify ? 4 : 0));
         if (bits) std::atomic_ref<uint8_t>(flags[vectorOf[i]]).fetch_or(bits, std::memory_order_relaxed);
       }
     });
   }
   auto vectorFlags = [&](size_t i, const LodInfo& L) {
-    if (!vectorOf) return VectorFlags{L.f > 0.0f, laneWantsLinear(s, L.minify)};
+    if (!vectorOf) return VectorFlags{L.f > 0.0f, laneWantsLinear(s, L.minify), L.minify};
     uint8_t b = flags[vectorOf[i]];
-    return VectorFlags{(b & 1) != 0, (b & 2) != 0};
+    return VectorFlags{(b & 1) != 0, (b & 2) != 0, (b & 4) != 0};
   };
   const bool mixed = s.minFilter != s.magFilter;
   const bool fixed = dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&

@@ -145,14 +145,29 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
         << " levels from the shared MIP kernel)\n";
   }
   // The SIMD vector each work item runs in on the device: compute item i = invocation i; fragment item
-  // i = pixel (i % 1024, i / 1024) of the kernel's target.
+  // i = pixel (i % 1024, i / 1024) of the kernel's target. Lavapipe clips the full-screen triangle to
+  // the viewport and fans the rectangle into two triangles along the diagonal (0,0)-(W,H) (measured
+  // with a NaN probe); a stamp crossing it is shaded once per triangle, and only the lanes of one
+  // primitive share a vector's decisions (masked lanes load 0: lod 0 changes nothing here).
+  // Lanes masked off in a split vector still sample, with the zeros a masked load gives: the
+  // emulator runs one extra lane with query (0, 0, 0, 0) per such vector and discards its result.
   std::vector<uint32_t> vectors[2] = {std::vector<uint32_t>(n), std::vector<uint32_t>(n)};
   const uint32_t fw = uint32_t(profile.fragmentVectorW), fh = uint32_t(profile.fragmentVectorH), rowLen = 1024;
+  const double rows = double((n + rowLen - 1) / rowLen);
+  std::vector<uint8_t> sidesSeen(n / (fw * fh) * 2 + 2, 0);
   for (size_t i = 0; i < n; ++i) {
     vectors[0][i] = uint32_t(i / uint32_t(profile.computeVectorLanes));
     uint32_t x = uint32_t(i % rowLen), y = uint32_t(i / rowLen);
-    vectors[1][i] = (y / fh) * ((rowLen + fw - 1) / fw) + x / fw;
+    uint32_t side = (double(x) + 0.5) * rows > (double(y) + 0.5) * rowLen ? 1u : 0u;
+    uint32_t block = (y / fh) * ((rowLen + fw - 1) / fw) + x / fw;
+    vectors[1][i] = block * 2 + side;
+    sidesSeen[block] |= uint8_t(1u << side);
   }
+  std::vector<uint32_t> inactiveVectors;  // vectors of split stamps: each gets one zero lane
+  for (uint32_t b = 0; b < sidesSeen.size(); ++b)
+    if (sidesSeen[b] == 3) inactiveVectors.insert(inactiveVectors.end(), {b * 2, b * 2 + 1});
+  for (uint32_t v : inactiveVectors) vectors[1].push_back(v);
+  std::vector<float> qFrag, outFrag;
   out << std::left << std::setw(8) << "format" << std::setw(16) << "filter" << std::setw(8) << "address" << std::setw(10)
       << "stage" << std::right << std::setw(22) << "identical/total" << std::setw(10) << "max ulp" << "\n";
   for (emu::Format fmt : emu::kAllFormats) {
@@ -211,7 +226,15 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
                 std::memcpy(&emuOut[4 * i], &t, 16);
               }
             } else {
-              emu::textureLodBatch(tex, sd, profile, stage, q.data(), emuOut.data(), n, vectors[stage == emu::Stage::Compute ? 0 : 1].data());
+              if (stage == emu::Stage::Compute) {
+                emu::textureLodBatch(tex, sd, profile, stage, q.data(), emuOut.data(), n, vectors[0].data());
+              } else {
+                qFrag.assign(q.begin(), q.end());
+                qFrag.resize(4 * vectors[1].size(), 0.0f);
+                outFrag.resize(qFrag.size());
+                emu::textureLodBatch(tex, sd, profile, stage, qFrag.data(), outFrag.data(), vectors[1].size(), vectors[1].data());
+                std::copy(outFrag.begin(), outFrag.begin() + 4 * n, emuOut.begin());
+              }
             }
           }
           std::memcpy(qBuf.data(), q.data(), n * 16);
