@@ -56,6 +56,24 @@ void BM_EmulatorTrilinear(benchmark::State& state) {
 }
 BENCHMARK(BM_EmulatorTrilinear)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The one-lane model (textureLod per query, one thread): the same bits, without lanes or threads.
+void BM_EmulatorTrilinearScalar(benchmark::State& state) {
+  Fixture& f = fixture();
+  const size_t n = f.queries.size() / 4;
+  std::vector<float> out(4 * n);
+  emu::SamplerDesc s;
+  for (auto _ : state) {
+    for (size_t i = 0; i < n; ++i) {
+      emu::Texel4 t = emu::textureLod(*f.tex, s, emu::lavapipeProfile(), f.queries[4 * i], f.queries[4 * i + 1],
+                                      f.queries[4 * i + 2], f.queries[4 * i + 3]);
+      std::memcpy(&out[4 * i], &t, 16);
+    }
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(n));
+}
+BENCHMARK(BM_EmulatorTrilinearScalar)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void BM_LavapipeTrilinear(benchmark::State& state) {
   Fixture& f = fixture();
   using namespace shadetwin::vk;
