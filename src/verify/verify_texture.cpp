@@ -6,7 +6,6 @@
 #include <memory>
 #include <ostream>
 #include <random>
-#include <sstream>
 #include <vector>
 
 #include "emu/device_profile.h"
@@ -257,7 +256,6 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
           }
           identical += same;
           total += n;
-          std::ostringstream tex_desc;
           out << std::left << std::setw(8) << emu::formatInfo(fmt).name << std::setw(16) << (fi < 0 ? "texelFetch" : kFilters[fi].name)
               << std::setw(8) << emu::addressName(am) << std::setw(10) << (stage == emu::Stage::Compute ? "compute" : "fragment")
               << std::right << std::setw(10) << same << "/" << std::left << std::setw(11) << n << std::right << std::setw(10)
