@@ -10,7 +10,7 @@ const DeviceProfile& lavapipeProfile() {
   static const DeviceProfile p{
       "lavapipe", true,
       "Mesa 22.3.6 llvmpipe (LLVM 15, 256-bit), measured with `shadetwin verify texture` and ../shared/facts/lavapipe.md",
-      /*filterWeightFracBits=*/0, /*lerpFused=*/true, /*lodFractionBits=*/0, /*unorm8FixedPoint=*/true,
+      /*filterWeightFracBits=*/0, /*lodFractionBits=*/0, /*unorm8FixedPoint=*/true,
       /*computeVectorLanes=*/8, /*fragmentVectorW=*/4, /*fragmentVectorH=*/2, DenormMode::Preserve, DenormMode::Flush};
   return p;
 }
@@ -20,7 +20,7 @@ const DeviceProfile& nvidiaProfile() {
       "nvidia", false,
       "public documentation only (CUDA programming guide, texture fetching: 9-bit weights with 8 fraction bits); "
       "not yet measured on a GPU",
-      /*filterWeightFracBits=*/8, /*lerpFused=*/true, /*lodFractionBits=*/8, /*unorm8FixedPoint=*/false,
+      /*filterWeightFracBits=*/8, /*lodFractionBits=*/8, /*unorm8FixedPoint=*/false,
       /*computeVectorLanes=*/1, /*fragmentVectorW=*/1, /*fragmentVectorH=*/1, DenormMode::Preserve, DenormMode::Preserve};
   return p;
 }

@@ -14,9 +14,8 @@ struct DeviceProfile {
   std::string name;
   bool verified;             // every field below measured bit-exact on the device
   std::string provenance;    // where the values come from
-  // Texture unit, float path.
+  // Texture unit, float path (every lerp is one fma(w, b - a, a) on both profiles).
   int filterWeightFracBits;  // 0: exact float weights (x - floor(x)); n: weights rounded to n fraction bits
-  bool lerpFused;            // each lerp one fma(w, b - a, a)
   int lodFractionBits;       // 0: exact lod fraction
   // Texture unit, 8-bit path: lavapipe filters RGBA8 in 8.8 fixed point when both wrap modes are
   // clamp-to-edge or repeat (Mesa's AoS sampler); otherwise the float path.

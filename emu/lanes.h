@@ -137,7 +137,5 @@ inline F32<N> fmaLanes(F32<N> a, F32<N> b, F32<N> c) {
   return r;
 }
 
-template <int N> inline bool any(Mask<N> m) { for (int i = 0; i < N; ++i) if (m.v[i]) return true; return false; }
-template <int N> inline bool all(Mask<N> m) { for (int i = 0; i < N; ++i) if (!m.v[i]) return false; return true; }
 
 }  // namespace emu

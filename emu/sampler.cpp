@@ -15,7 +15,6 @@
 
 namespace emu {
 
-const char* filterName(Filter f) { return f == Filter::Nearest ? "nearest" : "linear"; }
 const char* addressName(AddressMode a) {
   switch (a) {
     case AddressMode::ClampToEdge: return "clamp";
@@ -404,8 +403,9 @@ Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile&
 void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, Stage stage, const float* q,
                      float* out, size_t n, const uint32_t* vectorOf) {
   const bool flush = dev.denorm(stage) == DenormMode::Flush;
-  // Per-vector decisions (only when lanes are grouped): bit 0 need lerp, bit 1 need linear. Vectors
-  // may span blocks (fragment layouts), hence the atomic OR.
+  // Per-vector decisions (only when lanes are grouped): bit 0 need lerp, bit 1 need linear, bit 2 any
+  // minified. Vectors may span blocks (fragment layouts), hence the atomic OR. selectLod runs again in
+  // the sampling pass: recomputing it is cheaper than storing a LodInfo per query (measured).
   std::vector<uint8_t> flags;
   if (vectorOf) {
     uint32_t groups = 0;

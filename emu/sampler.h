@@ -25,7 +25,6 @@ struct SamplerDesc {
   float maxLod = 1000.0f;
 };
 
-const char* filterName(Filter f);
 const char* addressName(AddressMode a);
 
 /// textureLod(sampler2DArray, vec3(u, v, layer), lod), as one lane deciding alone. Devices that decide

@@ -191,8 +191,9 @@ TEST(SamplerBatch, LanesOfOneVectorShareTheLerpDecision) {
   for (size_t i = 0; i < n; ++i) vec[i] = uint32_t(i / 8);
   emu::textureLodBatch(tex, s, emu::lavapipeProfile(), emu::Stage::Compute, q.data(), out.data(), n, vec.data());
   EXPECT_TRUE(std::isinf(out[4 * 3]));
-  for (size_t i = 0; i < 8; ++i)
+  for (size_t i = 0; i < 8; ++i) {
     if (i != 3) EXPECT_TRUE(std::isnan(out[4 * i])) << i;
+  }
   for (size_t i = 8; i < 16; ++i) EXPECT_EQ(out[4 * i], 1.0f) << i;
   emu::textureLodBatch(tex, s, emu::lavapipeProfile(), emu::Stage::Compute, q.data(), out.data(), n, nullptr);
   EXPECT_EQ(out[0], 1.0f);  // per-lane decisions: no lerp at fraction 0

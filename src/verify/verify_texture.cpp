@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "emu/device_profile.h"
-#include "emu/fpenv.h"
 #include "emu/sampler.h"
 #include "image_io.h"
 #include "mips.h"
@@ -216,7 +215,6 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
             }
           }
           {
-            emu::DenormalScope mode(profile.denorm(stage) == emu::DenormMode::Flush);
             if (fi < 0) {
               for (size_t i = 0; i < n; ++i) {
                 int32_t v[4];
