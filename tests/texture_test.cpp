@@ -192,7 +192,9 @@ TEST(SamplerBatch, LanesOfOneVectorShareTheLerpDecision) {
   emu::textureLodBatch(tex, s, emu::lavapipeProfile(), emu::Stage::Compute, q.data(), out.data(), n, vec.data());
   EXPECT_TRUE(std::isinf(out[4 * 3]));
   for (size_t i = 0; i < 8; ++i) {
-    if (i != 3) EXPECT_TRUE(std::isnan(out[4 * i])) << i;
+    if (i != 3) {
+      EXPECT_TRUE(std::isnan(out[4 * i])) << i;
+    }
   }
   for (size_t i = 8; i < 16; ++i) EXPECT_EQ(out[4 * i], 1.0f) << i;
   emu::textureLodBatch(tex, s, emu::lavapipeProfile(), emu::Stage::Compute, q.data(), out.data(), n, nullptr);
