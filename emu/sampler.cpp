@@ -356,6 +356,74 @@ Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
   return {c.r, c.g, c.b, c.a};
 }
 
+// RGBA32F bilinear/trilinear, the HDR hot path: addressing and weights in lanes (the same
+// wrapLinear/weight templates), then per lane on whole texels: a texel is one 4-float vector, so the
+// four channels lerp together with no SoA transposes of the 8 (or 16) texels per lane. Per channel
+// these are exactly the operations of lerp4 (fma(w, b - a, a)), so the bits are the same
+// (tests/texture_test.cpp: batch == one-lane model).
+typedef float Px __attribute__((vector_size(16)));
+inline Px loadPx(const uint8_t* p) {
+  Px r;
+  std::memcpy(&r, p, 16);
+  return r;
+}
+inline Px lerpPx(float w, Px a, Px b) {
+  const Px d = b - a;
+  Px r;
+  for (int c = 0; c < 4; ++c) r[c] = __builtin_fmaf(w, d[c], a[c]);
+  return r;
+}
+
+template <int N>
+struct LevelTaps {
+  I32<N> o00, o10, o01, o11;  // byte offsets of the four texels
+  F32<N> a, b;                // weights
+};
+
+template <int N>
+LevelTaps<N> levelTaps(const Texture& t, const DeviceProfile& dev, I32<N> level, I32<N> layer, F32<N> u, F32<N> v,
+                       AddressMode au, AddressMode av) {
+  using I = I32<N>;
+  const I w = imax(I(int32_t(t.width())) >> level, I(1)), h = imax(I(int32_t(t.height())) >> level, I(1));
+  Linear1D<F32<N>> x = wrapLinear(u, w, isPot(t.width()), au), y = wrapLinear(v, h, isPot(t.height()), av);
+  LevelTaps<N> r;
+  r.a = weight(x.w, dev, LaneFilter::Linear);
+  r.b = weight(y.w, dev, LaneFilter::Linear);
+  const I row0 = (layer * h + y.i0) * w, row1 = (layer * h + y.i1) * w;
+  r.o00 = (row0 + x.i0) << 4;
+  r.o10 = (row0 + x.i1) << 4;
+  r.o01 = (row1 + x.i0) << 4;
+  r.o11 = (row1 + x.i1) << 4;
+  return r;
+}
+
+template <int N>
+Px bilinearPx(const uint8_t* base, const LevelTaps<N>& t, int i) {
+  const float a = t.a[i];
+  Px r0 = lerpPx(a, loadPx(base + uint32_t(t.o00[i])), loadPx(base + uint32_t(t.o10[i])));
+  Px r1 = lerpPx(a, loadPx(base + uint32_t(t.o01[i])), loadPx(base + uint32_t(t.o11[i])));
+  return lerpPx(t.b[i], r0, r1);
+}
+
+template <int N>
+void sampleBlockLinearRgba32f(const Texture& tex, const DeviceProfile& dev, I32<N> l0, I32<N> l1, I32<N> layer, F32<N> u,
+                              F32<N> v, F32<N> f, const bool* lerpLane, bool anyLerp, AddressMode au, AddressMode av,
+                              float* out, int count) {
+  const LevelTaps<N> t0 = levelTaps(tex, dev, l0, layer, u, v, au, av);
+  LevelTaps<N> t1{};
+  F32<N> fq(0.0f);
+  if (anyLerp) {
+    t1 = levelTaps(tex, dev, l1, layer, u, v, au, av);
+    fq = lodFraction(f, dev);
+  }
+  const auto& levels = tex.levels();
+  for (int i = 0; i < count; ++i) {
+    Px c = bilinearPx(levels[size_t(l0[i])].data(), t0, i);
+    if (lerpLane[i]) c = lerpPx(fq[i], c, bilinearPx(levels[size_t(l1[i])].data(), t1, i));
+    std::memcpy(out + 4 * i, &c, 16);
+  }
+}
+
 // Eight lanes of the float path with equal mag/min filters: the same template code as the one-lane
 // model above, on emu lanes (tests/texture_test.cpp checks the two agree bit for bit).
 constexpr int kLanes = 8;
@@ -378,6 +446,10 @@ void sampleBlock(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
     anyLerp |= lerpLane[i];
   }
   const LaneFilter lane = s.minFilter == Filter::Linear ? LaneFilter::Linear : LaneFilter::Nearest;
+  if (lane == LaneFilter::Linear && tex.format() == Format::RGBA32F) {
+    sampleBlockLinearRgba32f(tex, dev, l0, l1, layer, u, v, f, lerpLane, anyLerp, s.addressU, s.addressV, out, count);
+    return;
+  }
   C4<F> c = sampleLevelFloat<F>(tex, dev, l0, layer, u, v, lane, s.addressU, s.addressV);
   if (anyLerp) {
     C4<F> c1 = sampleLevelFloat<F>(tex, dev, l1, layer, u, v, lane, s.addressU, s.addressV);
