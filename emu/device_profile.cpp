@@ -11,7 +11,9 @@ const DeviceProfile& lavapipeProfile() {
       "lavapipe", true,
       "Mesa 22.3.6 llvmpipe (LLVM 15, 256-bit), measured with `shadetwin verify texture` and ../shared/facts/lavapipe.md",
       /*filterWeightFracBits=*/0, /*lodFractionBits=*/0, /*unorm8FixedPoint=*/true,
-      /*computeVectorLanes=*/8, /*fragmentVectorW=*/4, /*fragmentVectorH=*/2, DenormMode::Preserve, DenormMode::Flush};
+      /*computeVectorLanes=*/8, /*fragmentVectorW=*/4, /*fragmentVectorH=*/2, DenormMode::Preserve, DenormMode::Flush,
+      {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
+       /*verified=*/false}};
   return p;
 }
 
@@ -21,7 +23,9 @@ const DeviceProfile& nvidiaProfile() {
       "public documentation only (CUDA programming guide, texture fetching: 9-bit weights with 8 fraction bits); "
       "not yet measured on a GPU",
       /*filterWeightFracBits=*/8, /*lodFractionBits=*/8, /*unorm8FixedPoint=*/false,
-      /*computeVectorLanes=*/1, /*fragmentVectorW=*/1, /*fragmentVectorH=*/1, DenormMode::Preserve, DenormMode::Preserve};
+      /*computeVectorLanes=*/1, /*fragmentVectorW=*/1, /*fragmentVectorH=*/1, DenormMode::Preserve, DenormMode::Preserve,
+      {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
+       /*verified=*/false}};
   return p;
 }
 

@@ -28,6 +28,17 @@ struct DeviceProfile {
   // Denormals per shader stage.
   DenormMode denormCompute;
   DenormMode denormFragment;
+  // Rasterizer (emu/raster.h). Sub-pixel snapping of window coordinates to subPixelBits fraction
+  // bits (round to nearest even), top-left coverage rule, plane equations of each attribute from the
+  // float vertex positions, evaluated at pixel centres with fused (interpFma) or separate mul + add.
+  struct Raster {
+    int subPixelBits;
+    bool viewportFma;     // x_win = fma(x_ndc, scale, translate) instead of mul then add
+    bool interpFma;       // a = fma(dadx, x, a0); a = fma(dady, y, a)
+    bool cwSwapsLast;     // clockwise triangles are set up as (v0, v2, v1) (else (v1, v0, v2))
+    bool fineDerivatives; // dFdx per quad row / dFdy per column (else coarse: row 0 / column 0)
+    bool verified;
+  } raster;
   DenormMode denorm(Stage s) const { return s == Stage::Compute ? denormCompute : denormFragment; }
 };
 

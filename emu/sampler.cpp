@@ -524,6 +524,35 @@ void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfi
   });
 }
 
+void textureLodVector(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* q, float* out,
+                      int n) {
+  LodInfo lods[16];
+  VectorFlags vf;
+  for (int k = 0; k < n; ++k) {
+    lods[k] = selectLod(tex, s, q[4 * k + 2], q[4 * k + 3]);
+    vf.needLerp |= lods[k].f > 0.0f;
+    vf.needLinear |= laneWantsLinear(s, lods[k].minify);
+    vf.anyMinify |= lods[k].minify;
+  }
+  const bool mixed = s.minFilter != s.magFilter;
+  const bool fixed = dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&
+                     s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat;
+  const bool mipLinear = s.mipmapMode == MipmapMode::Linear && tex.levelCount() > 1;
+  if (mixed || fixed) {
+    for (int k = 0; k < n; ++k) {
+      Texel4 t = sampleOne(tex, s, dev, q[4 * k], q[4 * k + 1], lods[k], vf);
+      std::memcpy(out + 4 * k, &t, 16);
+    }
+    return;
+  }
+  for (int b = 0; b < n; b += kLanes) {
+    const int count = std::min(kLanes, n - b);
+    bool lerpLane[kLanes];
+    for (int k = 0; k < count; ++k) lerpLane[k] = mipLinear && vf.needLerp;
+    sampleBlock(tex, s, dev, q + 4 * b, lods + b, lerpLane, out + 4 * b, count);
+  }
+}
+
 Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32_t level) {
   return tex.loadFloat(uint32_t(level), uint32_t(layer), uint32_t(x), uint32_t(y));
 }

@@ -42,4 +42,11 @@ Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32
 void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, Stage stage, const float* query,
                      float* out, size_t n, const uint32_t* vectorOf = nullptr);
 
+/// One device vector: n <= 16 queries of (u, v, layer, lod) that run together in one SIMD vector of
+/// the device (the per-vector "need lerp" / "need linear" decisions are taken over all n lanes). Runs
+/// on the calling thread under its current denormal mode (the caller's stage). Used by the C++ SIMD
+/// builds of shared shading code, whose lanes are the device's lanes.
+void textureLodVector(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float* query, float* out,
+                      int n);
+
 }  // namespace emu

@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
 #include <filesystem>
 
 namespace shadetwin {
@@ -33,6 +34,50 @@ ImageRGBA loadImageRGBA(const std::string& path) {
     o[3] = nc > 3 ? p[3] : 1.0f;
   }
   return img;
+}
+
+namespace {
+
+void writeImage(const std::string& path, uint32_t width, uint32_t height, int channels, OIIO::TypeDesc type,
+                const void* data) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir)) throw FileError(path + ": cannot write: directory " + dir.string() + " does not exist");
+  const fs::path tmp = dir / (".tmp-" + target.filename().string());
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw FileError(path + ": cannot write: no image writer for this file extension");
+  OIIO::ImageSpec spec(int(width), int(height), channels, type);
+  if (!out->open(tmp.string(), spec) || !out->write_image(type, data) || !out->close()) {
+    std::string err = out->geterror();
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw FileError(path + ": cannot write: " + err);
+  }
+  std::error_code ec;
+  fs::rename(tmp, target, ec);
+  if (ec) throw FileError(path + ": cannot write: " + ec.message());
+}
+
+}  // namespace
+
+void writeExr(const std::string& path, uint32_t width, uint32_t height, const std::vector<float>& rgba) {
+  if (rgba.size() != size_t(width) * height * 4) throw FileError(path + ": image size does not match its pixels");
+  writeImage(path, width, height, 4, OIIO::TypeDesc::FLOAT, rgba.data());
+}
+
+void writePngToneMapped(const std::string& path, uint32_t width, uint32_t height, const std::vector<float>& rgba,
+                        float exposure) {
+  if (rgba.size() != size_t(width) * height * 4) throw FileError(path + ": image size does not match its pixels");
+  std::vector<uint8_t> px(size_t(width) * height * 3);
+  for (size_t i = 0; i < size_t(width) * height; ++i)
+    for (int c = 0; c < 3; ++c) {
+      float x = rgba[4 * i + size_t(c)] * exposure;
+      x = std::isfinite(x) ? std::fmin(std::fmax(x, 0.0f), 1.0f) : (x > 0 ? 1.0f : 0.0f);
+      float s = x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
+      px[3 * i + size_t(c)] = uint8_t(std::lround(s * 255.0f));
+    }
+  writeImage(path, width, height, 3, OIIO::TypeDesc::UINT8, px.data());
 }
 
 }  // namespace shadetwin

@@ -21,4 +21,13 @@ struct FileError : std::runtime_error {
 /// assets/ the message says how to fetch it.
 ImageRGBA loadImageRGBA(const std::string& path);
 
+/// Writes float RGBA as an OpenEXR file (half... no: 32-bit float channels R, G, B, A). The file is
+/// written next to its destination and renamed into place, so a failed write never destroys an
+/// existing file. Throws FileError naming the path.
+void writeExr(const std::string& path, uint32_t width, uint32_t height, const std::vector<float>& rgba);
+/// Tone-maps float RGBA (exposure * x, clamp to [0, 1], sRGB encoding) into an 8-bit PNG; same
+/// write-then-rename rule.
+void writePngToneMapped(const std::string& path, uint32_t width, uint32_t height, const std::vector<float>& rgba,
+                        float exposure = 1.0f);
+
 }  // namespace shadetwin

@@ -5,6 +5,8 @@
 #include <string>
 #include <iostream>
 
+#include "render/render.h"
+#include "scene/scene.h"
 #include "verify/verify.h"
 #include "vk/context.h"
 
@@ -29,6 +31,14 @@ int main(int argc, char** argv) {
     }
   }
   app.add_subcommand("devices", "list Vulkan devices");
+  shadetwin::RenderOptions ro;
+  auto* render = app.add_subcommand("render", "render a scene (default scenes/bunny.json) to an EXR and a tone-mapped PNG");
+  render->add_option("scene", ro.scene, "scene file (JSON, see README)");
+  render->add_option("--device", ro.device, "emu (the emulated GPU) or vulkan")->check(CLI::IsMember({"emu", "vulkan"}));
+  render->add_option("--out", ro.out, "output EXR (the PNG is written next to it); default <scene>.exr");
+  render->add_option("--width", ro.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+  render->add_option("--height", ro.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  render->add_option("--profile", ro.profile, "device profile the emulator follows (lavapipe, nvidia)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -39,6 +49,7 @@ int main(int argc, char** argv) {
       for (auto& n : shadetwin::vk::Context::listDevices()) std::cout << n << "\n";
       return 0;
     }
+    if (app.got_subcommand("render")) return shadetwin::renderCommand(ro, std::cout);
     if (verify->got_subcommand("math")) return shadetwin::verifyMath(vo, std::cout);
     if (verify->got_subcommand("texture")) return shadetwin::verifyTexture(vo, std::cout);
     if (verify->got_subcommand("mips")) return shadetwin::verifyMips(vo, std::cout);

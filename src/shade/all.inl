@@ -4,3 +4,5 @@
 #include "shade/exact_math.h"
 #include "shade/verify_kernels.h"
 #include "shade/mip.h"
+#include "shade/gbuffer.h"
+#include "shade/shade_mirror.h"

@@ -9,6 +9,7 @@
 
 #include "emu/lanes.h"
 #include "shade/vec.h"
+#include "shade/sampler_bridge.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"

@@ -26,6 +26,7 @@
 #define OUT(T) out T
 #define INOUT(T) inout T
 #define INLINE
+#define Sampler2D sampler2D
 
 // select(m, a, b): a where m is true, else b. GLSL mix() with a bool selector picks without arithmetic.
 float select(bool m, float a, float b) { return mix(b, a, m); }
@@ -70,6 +71,10 @@ using Float2 = ::shadetwin::shade::V2<Float>;
 using Float3 = ::shadetwin::shade::V3<Float>;
 using Float4 = ::shadetwin::shade::V4<Float>;
 using uint = uint32_t;
+using Sampler2D = ::shadetwin::shade::Sampler2D;
+inline Float4 textureLod(const Sampler2D& s, Float2 uv, Float lod) {
+  return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod);
+}
 
 inline Float abs(Float x) { return uintBitsToFloat(floatBitsToUint(x) & 0x7fffffffu); }
 inline Float min(Float a, Float b) { return select(b < a, b, a); }  // GLSL: y if y < x, else x

@@ -1,0 +1,281 @@
+#include "emu/raster.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+
+#include <tbb/parallel_for.h>
+
+#include "emu/fpenv.h"
+
+namespace emu {
+
+Framebuffer::Framebuffer(uint32_t w, uint32_t h, int outputs, float clearDepth)
+    : width(w), height(h), numOutputs(outputs), depth(size_t(w) * h, clearDepth), color(size_t(w) * h * size_t(outputs), 0.0f) {}
+
+void quadDerivatives(const DeviceProfile& dev, const float v[4], float ddx[4], float ddy[4]) {
+  if (dev.raster.fineDerivatives) {
+    ddx[0] = ddx[1] = v[1] - v[0];
+    ddx[2] = ddx[3] = v[3] - v[2];
+    ddy[0] = ddy[2] = v[2] - v[0];
+    ddy[1] = ddy[3] = v[3] - v[1];
+  } else {
+    ddx[0] = ddx[1] = ddx[2] = ddx[3] = v[1] - v[0];
+    ddy[0] = ddy[1] = ddy[2] = ddy[3] = v[2] - v[0];
+  }
+}
+
+namespace {
+
+constexpr int kTile = 64;
+
+// A vertex after the viewport transform: window x, y, z, 1/w, and its varyings premultiplied by 1/w.
+struct WinVertex {
+  float x, y, z, oow;
+  float v[kMaxVaryings];
+};
+
+struct ClipVertex {
+  float c[4];
+  float v[kMaxVaryings];
+};
+
+struct Plane3 {
+  float a0, dadx, dady;
+};
+
+struct TriSetup {
+  int64_t X[3], Y[3];  // snapped positions (sub-pixel units, pixel centres at multiples of 2^bits)
+  bool topLeft[3];
+  int x0, y0, x1, y1;  // pixel bounding box, inclusive, clipped to the framebuffer
+  bool front;
+  uint32_t triangle;
+  Plane3 z, w;
+  Plane3 v[kMaxVaryings];
+};
+
+float madd(bool fused, float a, float b, float c) { return fused ? std::fma(a, b, c) : a * b + c; }
+
+WinVertex toWindow(const DeviceProfile& dev, const ClipVertex& cv, int nv, float sx, float tx, float sy, float ty) {
+  WinVertex w;
+  const bool fused = dev.raster.viewportFma;
+  w.oow = 1.0f / cv.c[3];
+  w.x = madd(fused, cv.c[0] * w.oow, sx, tx);
+  w.y = madd(fused, cv.c[1] * w.oow, sy, ty);
+  w.z = madd(fused, cv.c[2] * w.oow, 1.0f, 0.0f);  // depth range [0, 1]
+  for (int k = 0; k < nv; ++k) w.v[k] = cv.v[k] * w.oow;
+  return w;
+}
+
+// Sutherland-Hodgman against 0 <= z and z <= w (the near and far planes); returns the polygon.
+int clipNearFar(ClipVertex poly[9], int n, int nv) {
+  for (int plane = 0; plane < 2; ++plane) {
+    ClipVertex out[9];
+    int m = 0;
+    auto dist = [&](const ClipVertex& v) { return plane == 0 ? v.c[2] : v.c[3] - v.c[2]; };
+    for (int i = 0; i < n; ++i) {
+      const ClipVertex &a = poly[i], &b = poly[(i + 1) % n];
+      float da = dist(a), db = dist(b);
+      if (da >= 0) out[m++] = a;
+      if ((da >= 0) != (db >= 0)) {
+        float t = da / (da - db);
+        ClipVertex c;
+        for (int k = 0; k < 4; ++k) c.c[k] = a.c[k] + t * (b.c[k] - a.c[k]);
+        for (int k = 0; k < nv; ++k) c.v[k] = a.v[k] + t * (b.v[k] - a.v[k]);
+        out[m++] = c;
+      }
+    }
+    n = m;
+    std::copy(out, out + m, poly);
+    if (n < 3) return 0;
+  }
+  return n;
+}
+
+bool setupTriangle(const DeviceProfile& dev, const Framebuffer& fb, const WinVertex* in[3], int nv, bool cullBack,
+                   uint32_t triangle, TriSetup& t) {
+  const float scale = float(1 << dev.raster.subPixelBits);
+  int64_t X[3], Y[3];
+  for (int i = 0; i < 3; ++i) {
+    const float fx = (in[i]->x - 0.5f) * scale, fy = (in[i]->y - 0.5f) * scale;
+    if (!(std::fabs(fx) < 1.0e9f && std::fabs(fy) < 1.0e9f)) return false;  // outside the fixed-point range
+    X[i] = int64_t(std::nearbyint(fx));
+    Y[i] = int64_t(std::nearbyint(fy));
+  }
+  const int64_t area = (X[0] - X[1]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[0] - Y[1]);
+  if (area == 0) return false;
+  t.front = area > 0;  // counter-clockwise in Vulkan's framebuffer coordinates
+  if (cullBack && !t.front) return false;
+  int order[3] = {0, 1, 2};
+  if (area < 0) {
+    if (dev.raster.cwSwapsLast) order[1] = 2, order[2] = 1;
+    else order[0] = 1, order[1] = 0;
+  }
+  const WinVertex* v[3] = {in[order[0]], in[order[1]], in[order[2]]};
+  for (int i = 0; i < 3; ++i) t.X[i] = X[order[i]], t.Y[i] = Y[order[i]];
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    const int64_t dy = t.Y[j] - t.Y[i], dx = t.X[j] - t.X[i];
+    t.topLeft[i] = dy > 0 || (dy == 0 && dx < 0);
+  }
+  const int bits = dev.raster.subPixelBits;
+  const int64_t one = int64_t(1) << bits;
+  auto floorDiv = [&](int64_t a) { return a >= 0 ? a / one : -((-a + one - 1) / one); };
+  int64_t minX = std::min({t.X[0], t.X[1], t.X[2]}), maxX = std::max({t.X[0], t.X[1], t.X[2]});
+  int64_t minY = std::min({t.Y[0], t.Y[1], t.Y[2]}), maxY = std::max({t.Y[0], t.Y[1], t.Y[2]});
+  t.x0 = int(std::max<int64_t>(floorDiv(minX), 0));
+  t.y0 = int(std::max<int64_t>(floorDiv(minY), 0));
+  t.x1 = int(std::min<int64_t>(floorDiv(maxX) + 1, int64_t(fb.width) - 1));
+  t.y1 = int(std::min<int64_t>(floorDiv(maxY) + 1, int64_t(fb.height) - 1));
+  if (t.x0 > t.x1 || t.y0 > t.y1) return false;
+  t.triangle = triangle;
+  // Plane equations from the float window positions (Mesa lp_state_setup.c order of operations).
+  const float x0c = v[0]->x - 0.5f, y0c = v[0]->y - 0.5f;
+  const float dx01 = v[0]->x - v[1]->x, dy01 = v[0]->y - v[1]->y;
+  const float dx20 = v[2]->x - v[0]->x, dy20 = v[2]->y - v[0]->y;
+  const float e = dx01 * dy20, f = dy01 * dx20;
+  const float ooa = 1.0f / (e - f);
+  const float dx20o = dx20 * ooa, dy20o = dy20 * ooa, dx01o = dx01 * ooa, dy01o = dy01 * ooa;
+  auto coef = [&](float a0, float a1, float a2) {
+    const float da01 = a0 - a1, da20 = a2 - a0;
+    Plane3 p;
+    p.dadx = da01 * dy20o - da20 * dy01o;
+    p.dady = da20 * dx01o - da01 * dx20o;
+    p.a0 = a0 - (p.dadx * x0c + p.dady * y0c);
+    return p;
+  };
+  t.z = coef(v[0]->z, v[1]->z, v[2]->z);
+  t.w = coef(v[0]->oow, v[1]->oow, v[2]->oow);
+  for (int k = 0; k < nv; ++k) t.v[k] = coef(v[0]->v[k], v[1]->v[k], v[2]->v[k]);
+  return true;
+}
+
+inline float interp(bool fused, const Plane3& p, float px, float py) {
+  return madd(fused, p.dady, py, madd(fused, p.dadx, px, p.a0));
+}
+
+}  // namespace
+
+void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const FragmentFn& fs, RasterStats* stats) {
+  const int nv = in.numVaryings;
+  const float sx = float(fb.width) * 0.5f, sy = float(fb.height) * 0.5f;
+  // Setup, in submission order (clipped triangles become fans, in order).
+  std::vector<TriSetup> tris(in.triangles);
+  std::vector<uint8_t> ok(in.triangles, 0);
+  std::vector<std::vector<TriSetup>> extra(in.triangles);  // clipped: fan pieces
+  std::atomic<size_t> clipped{0}, culled{0};
+  tbb::parallel_for(size_t(0), in.triangles, [&](size_t t) {
+    DenormalScope mode(false);
+    ClipVertex cv[9];
+    bool inside = true;
+    for (int i = 0; i < 3; ++i) {
+      const uint32_t idx = in.indices[3 * t + size_t(i)];
+      std::memcpy(cv[i].c, in.clip + 4 * size_t(idx), 16);
+      for (int k = 0; k < nv; ++k) cv[i].v[k] = in.varyings[size_t(idx) * size_t(nv) + size_t(k)];
+      inside = inside && cv[i].c[2] >= 0.0f && cv[i].c[2] <= cv[i].c[3] && cv[i].c[3] > 0.0f;
+    }
+    if (inside) {
+      WinVertex w[3];
+      for (int i = 0; i < 3; ++i) w[i] = toWindow(dev, cv[i], nv, sx, sx, sy, sy);
+      const WinVertex* p[3] = {&w[0], &w[1], &w[2]};
+      ok[t] = setupTriangle(dev, fb, p, nv, in.cullBack, uint32_t(t), tris[t]);
+      if (!ok[t]) culled.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    clipped.fetch_add(1, std::memory_order_relaxed);
+    const int n = clipNearFar(cv, 3, nv);
+    if (n < 3) return;
+    WinVertex w[9];
+    for (int i = 0; i < n; ++i) w[i] = toWindow(dev, cv[i], nv, sx, sx, sy, sy);
+    for (int i = 1; i + 1 < n; ++i) {
+      const WinVertex* p[3] = {&w[0], &w[i], &w[i + 1]};
+      TriSetup s;
+      if (setupTriangle(dev, fb, p, nv, in.cullBack, uint32_t(t), s)) extra[t].push_back(s);
+    }
+  });
+  // Binning into 64x64 tiles, in submission order.
+  const int tilesX = int((fb.width + kTile - 1) / kTile), tilesY = int((fb.height + kTile - 1) / kTile);
+  std::vector<std::vector<const TriSetup*>> bins(size_t(tilesX) * size_t(tilesY));
+  auto bin = [&](const TriSetup& s) {
+    for (int ty = s.y0 / kTile; ty <= s.y1 / kTile; ++ty)
+      for (int tx = s.x0 / kTile; tx <= s.x1 / kTile; ++tx) bins[size_t(ty) * size_t(tilesX) + size_t(tx)].push_back(&s);
+  };
+  for (size_t t = 0; t < in.triangles; ++t) {
+    if (ok[t]) bin(tris[t]);
+    for (auto& s : extra[t]) bin(s);
+  }
+  std::atomic<size_t> quadCount{0}, fragCount{0};
+  const bool fused = dev.raster.interpFma;
+  const bool flush = dev.denormFragment == DenormMode::Flush;
+  const int bits = dev.raster.subPixelBits;
+  tbb::parallel_for(size_t(0), bins.size(), [&](size_t b) {
+    if (bins[b].empty()) return;
+    DenormalScope mode(flush);
+    const int tx0 = int(b % size_t(tilesX)) * kTile, ty0 = int(b / size_t(tilesX)) * kTile;
+    const int tx1 = std::min(tx0 + kTile, int(fb.width)) - 1, ty1 = std::min(ty0 + kTile, int(fb.height)) - 1;
+    size_t quads = 0, frags = 0;
+    Quad q;
+    q.drawId = in.drawId;
+    float out[4 * 64][4];  // up to 64 outputs
+    for (const TriSetup* s : bins[b]) {
+      const int qx0 = std::max(s->x0, tx0) & ~1, qy0 = std::max(s->y0, ty0) & ~1;
+      const int qx1 = std::min(s->x1, tx1), qy1 = std::min(s->y1, ty1);
+      for (int qy = qy0; qy <= qy1; qy += 2)
+        for (int qx = qx0; qx <= qx1; qx += 2) {
+          uint8_t covered = 0;
+          for (int i = 0; i < 4; ++i) {
+            const int px = qx + (i & 1), py = qy + (i >> 1);
+            if (px > tx1 || py > ty1 || px < tx0 || py < ty0) continue;
+            const int64_t PX = int64_t(px) << bits, PY = int64_t(py) << bits;
+            bool inside = true;
+            for (int e = 0; e < 3 && inside; ++e) {
+              const int j = (e + 1) % 3;
+              const int64_t E = (s->Y[j] - s->Y[e]) * (PX - s->X[e]) - (s->X[j] - s->X[e]) * (PY - s->Y[e]);
+              inside = E > 0 || (E == 0 && s->topLeft[e]);
+            }
+            if (inside) covered |= uint8_t(1u << i);
+          }
+          if (!covered) continue;
+          q.x = qx, q.y = qy, q.covered = covered, q.triangle = s->triangle, q.frontFacing = s->front;
+          uint8_t live = 0;
+          for (int i = 0; i < 4; ++i) {
+            const float px = float(qx + (i & 1)), py = float(qy + (i >> 1));
+            q.z[i] = interp(fused, s->z, px, py);
+            if (covered & (1u << i)) {
+              const size_t at = size_t(qy + (i >> 1)) * fb.width + size_t(qx + (i & 1));
+              if (q.z[i] <= fb.depth[at]) live |= uint8_t(1u << i);
+            }
+          }
+          ++quads;
+          if (!live) continue;
+          q.live = live;
+          for (int i = 0; i < 4; ++i) {
+            const float px = float(qx + (i & 1)), py = float(qy + (i >> 1));
+            const float oow = 1.0f / interp(fused, s->w, px, py);
+            for (int k = 0; k < nv; ++k) q.v[k][i] = interp(fused, s->v[k], px, py) * oow;
+          }
+          fs(q, out);
+          for (int i = 0; i < 4; ++i) {
+            if (!(live & (1u << i))) continue;
+            const size_t at = size_t(qy + (i >> 1)) * fb.width + size_t(qx + (i & 1));
+            fb.depth[at] = q.z[i];
+            float* dst = fb.color.data() + at * size_t(fb.numOutputs);
+            for (int k = 0; k < fb.numOutputs; ++k) dst[k] = out[k][i];
+            ++frags;
+          }
+        }
+    }
+    quadCount.fetch_add(quads, std::memory_order_relaxed);
+    fragCount.fetch_add(frags, std::memory_order_relaxed);
+  });
+  if (stats) {
+    stats->trianglesIn += in.triangles;
+    stats->trianglesClipped += clipped.load();
+    stats->trianglesCulled += culled.load();
+    stats->quads += quadCount.load();
+    stats->fragments += fragCount.load();
+  }
+}
+
+}  // namespace emu

@@ -1,0 +1,77 @@
+// Emulated rasterizer: viewport transform, near/far clipping, sub-pixel snapping, the coverage
+// (top-left) rule, D32F depth test (less-or-equal, early), plane-equation interpolation of depth
+// and perspective-correct varyings at pixel centres, 2x2 quads with helper pixels, and a tiled,
+// TBB-parallel loop whose output does not depend on the thread count (each tile runs its triangles
+// in submission order). The device profile's `raster` block holds what differs between devices.
+//
+// What the lavapipe profile models (Mesa llvmpipe, read in lp_setup_tri.c, lp_state_setup.c and
+// lp_bld_interp.c, re-implemented here; see docs/DESIGN.md "Rasterizer"):
+//   window coordinates  x_w = x_c * (1 / w_c) * sx + tx   (1/w one IEEE division; * sx + tx fused)
+//   snapping             X = rint((x_w - 0.5) * 2^subPixelBits), pixel centres at integer multiples
+//   orientation          area = dx01 * dy20 - dx20 * dy01 on snapped positions; 0 culls; clockwise
+//                        triangles are set up as (v0, v2, v1)
+//   coverage             E_i(p) > 0, or E_i(p) = 0 on a top or left edge
+//   plane equations      from the float window positions: ooa = 1 / (dx01 dy20 - dy01 dx20),
+//                        dadx = da01 dy20 ooa - da20 dy01 ooa, dady = da20 dx01 ooa - da01 dx20 ooa,
+//                        a0 = a_0 - (dadx (x_0 - 1/2) + dady (y_0 - 1/2))
+//   per pixel (px, py)   a = fma(dady, py, fma(dadx, px, a0)); perspective varyings are set up
+//                        premultiplied by 1/w and multiplied by 1 / (interpolated 1/w)
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "emu/device_profile.h"
+
+namespace emu {
+
+inline constexpr int kMaxVaryings = 16;
+
+struct DrawInput {
+  const float* clip = nullptr;      // 4 floats per vertex: clip-space position
+  const float* varyings = nullptr;  // numVaryings floats per vertex, interpolated perspective-correct
+  int numVaryings = 0;
+  const uint32_t* indices = nullptr;  // 3 per triangle
+  size_t triangles = 0;
+  uint32_t drawId = 0;  // passed through to the fragment callback (material, object)
+  bool cullBack = false;
+};
+
+/// One 2x2 quad of one triangle: pixels 0 (x, y), 1 (x+1, y), 2 (x, y+1), 3 (x+1, y+1).
+struct Quad {
+  int x = 0, y = 0;        // top-left pixel, both even
+  uint32_t drawId = 0;
+  uint32_t triangle = 0;   // index within the draw
+  uint8_t covered = 0;     // bit i: pixel i inside the triangle
+  uint8_t live = 0;        // bit i: covered, inside the framebuffer and passing the depth test
+  bool frontFacing = true;
+  float z[4] = {};
+  float v[kMaxVaryings][4] = {};  // varyings at the 4 pixel centres (helper pixels included)
+};
+
+/// Fragment stage: writes out[k][i], output float k of pixel i (numOutputs floats per pixel).
+using FragmentFn = std::function<void(const Quad&, float (*out)[4])>;
+
+struct Framebuffer {
+  uint32_t width = 0, height = 0;
+  int numOutputs = 0;          // floats per pixel in `color`
+  std::vector<float> depth;    // D32F, cleared to 1
+  std::vector<float> color;    // numOutputs floats per pixel, pixel-major
+  Framebuffer(uint32_t w, uint32_t h, int outputs, float clearDepth = 1.0f);
+};
+
+struct RasterStats {
+  size_t trianglesIn = 0, trianglesClipped = 0, trianglesCulled = 0, quads = 0, fragments = 0;
+};
+
+/// Rasterizes one draw into `fb` (depth test less-or-equal with depth writes), running `fs` on every
+/// quad with at least one live pixel; outputs of live pixels are written. Parallel over 64x64 tiles.
+void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const FragmentFn& fs,
+          RasterStats* stats = nullptr);
+
+/// Quad derivatives as the profile takes them: fine (per row / column) or coarse (row 0 / column 0).
+/// v: values at the 4 pixels; returns d/dx and d/dy for each pixel.
+void quadDerivatives(const DeviceProfile& dev, const float v[4], float ddx[4], float ddy[4]);
+
+}  // namespace emu

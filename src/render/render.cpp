@@ -1,0 +1,108 @@
+#include "render/render.h"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <stdexcept>
+
+#include "emu/device_profile.h"
+#include "emu/format.h"
+#include "image_io.h"
+#include "mips.h"
+#include "render/gbuffer.h"
+#include "scene/scene.h"
+
+namespace shadetwin {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+CameraRays cameraRays(const Scene& scene) {
+  const Camera& c = scene.camera;
+  double f[3] = {double(c.target[0]) - c.eye[0], double(c.target[1]) - c.eye[1], double(c.target[2]) - c.eye[2]};
+  auto norm = [](double* v) {
+    double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int k = 0; k < 3; ++k) v[k] /= l;
+  };
+  norm(f);
+  double s[3] = {f[1] * c.up[2] - f[2] * c.up[1], f[2] * c.up[0] - f[0] * c.up[2], f[0] * c.up[1] - f[1] * c.up[0]};
+  norm(s);
+  double u[3] = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
+  const double t = std::tan(c.fovY * 3.14159265358979323846 / 360.0), aspect = double(scene.width) / scene.height;
+  CameraRays r;
+  for (int k = 0; k < 3; ++k) {
+    r.eye[k] = c.eye[k];
+    r.fwd[k] = float(f[k]);
+    r.right[k] = float(s[k] * t * aspect);
+    r.down[k] = float(-u[k] * t);
+  }
+  return r;
+}
+
+EnvironmentMap loadEnvironment(const std::string& path, std::ostream& log) {
+  ImageRGBA img = loadImageRGBA(path);
+  EnvironmentMap env;
+  // Policy for the source HDRI (docs/DESIGN.md): NaN and infinite texels become 0 and are counted;
+  // negative texels are kept (they are real data in the CC0 maps) and counted.
+  for (float& v : img.texels) {
+    if (!std::isfinite(v)) {
+      v = 0.0f;
+      ++env.nonFinite;
+    } else if (v < 0.0f) {
+      ++env.negative;
+    }
+  }
+  auto levels = mipChainCpu(img.texels, img.width, img.height, 1, 8);
+  env.texture = std::make_unique<emu::Texture>(packTexture(emu::Format::RGBA32F, img.width, img.height, 1, levels));
+  env.levels = std::move(levels);
+  env.width = img.width;
+  env.height = img.height;
+  if (env.nonFinite) log << "  environment: " << env.nonFinite << " non-finite texel values replaced by 0\n";
+  return env;
+}
+
+int renderCommand(const RenderOptions& opts, std::ostream& log) {
+  auto t0 = Clock::now();
+  Scene scene = loadScene(opts.scene);
+  if (opts.width) scene.width = opts.width;
+  if (opts.height) scene.height = opts.height;
+  const double tScene = ms(t0);
+  if (opts.device != "emu") throw std::invalid_argument("--device " + opts.device + ": only 'emu' renders frames so far (the Vulkan shading pass is not built yet)");
+  const emu::DeviceProfile& dev = emu::profileByName(opts.profile);
+  log << "scene " << opts.scene << ": " << scene.objects.size() << " objects, " << scene.triangles() << " triangles, "
+      << scene.width << "x" << scene.height << ", environment " << scene.environment << "\n";
+  t0 = Clock::now();
+  EnvironmentMap env = loadEnvironment(scene.environment, log);
+  const double tEnv = ms(t0);
+  GbufferStats gs;
+  t0 = Clock::now();
+  GBuffer g = gbufferEmu(scene, dev, &gs);
+  const double tGbuf = ms(t0);
+  t0 = Clock::now();
+  std::vector<float> image = shadeEmu(scene, g, *env.texture, dev);
+  const double tShade = ms(t0);
+  std::string out = opts.out;
+  if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + ".exr";
+  std::string png = std::filesystem::path(out).replace_extension(".png").string();
+  t0 = Clock::now();
+  writeExr(out, scene.width, scene.height, image);
+  writePngToneMapped(png, scene.width, scene.height, image);
+  const double tWrite = ms(t0);
+  log << std::fixed << std::setprecision(1);
+  log << "  load scene + meshes      " << std::setw(8) << tScene << " ms\n";
+  log << "  environment + MIP chain  " << std::setw(8) << tEnv << " ms  (" << env.width << "x" << env.height << ", "
+      << env.texture->levelCount() << " levels, " << env.negative << " negative texel values)\n";
+  log << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
+      << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
+      << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
+  log << "  shading (emu, mirror)    " << std::setw(8) << tShade << " ms\n";
+  log << "  write EXR + PNG          " << std::setw(8) << tWrite << " ms\n";
+  log << "wrote " << out << " and " << png << "\n";
+  return 0;
+}
+
+}  // namespace shadetwin

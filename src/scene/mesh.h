@@ -1,0 +1,42 @@
+// Triangle meshes: procedural (sphere, plane, torus), the npm `bunny` / `teapot` packages, glTF 2.0
+// (tinygltf). Every mesh comes out with per-vertex normals, tangents (xyz + handedness) and UVs.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace shadetwin {
+
+struct MeshError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<std::array<float, 3>> positions, normals;
+  std::vector<std::array<float, 4>> tangents;  // xyz, w = handedness (+1 / -1)
+  std::vector<std::array<float, 2>> uvs;
+  std::vector<uint32_t> indices;  // triangles
+  size_t triangles() const { return indices.size() / 3; }
+};
+
+Mesh makeSphere(uint32_t segments = 96, uint32_t rings = 48);      // radius 1, centred at 0
+Mesh makePlane();                                                   // [-1,1]^2 in y = 0, normal +y
+Mesh makeTorus(float major = 1.0f, float minor = 0.35f, uint32_t segments = 96, uint32_t sides = 48);
+
+/// npm packages `bunny` / `teapot`: a CommonJS module with `exports.positions=[[x,y,z],...]` and
+/// `exports.cells=[[a,b,c],...]`. Normals are area-weighted, UVs spherical about the bounding-box centre.
+Mesh loadNpmMesh(const std::string& path);
+/// glTF 2.0 (.gltf or .glb): every triangle primitive of every node of the default scene, node
+/// transforms applied. Missing normals / UVs / tangents are generated.
+Mesh loadGltf(const std::string& path);
+
+/// Fills normals (area-weighted face normals) when absent, UVs (spherical) when absent, and
+/// tangents (from UV gradients, Gram-Schmidt against the normal) when absent.
+void completeMesh(Mesh& m);
+/// Checks indices and finiteness; throws MeshError naming `what` and the problem.
+void validateMesh(const Mesh& m, const std::string& what);
+
+}  // namespace shadetwin

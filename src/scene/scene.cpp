@@ -1,0 +1,305 @@
+#include "scene/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <set>
+
+namespace shadetwin {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+
+Mat4 mul(const Mat4& a, const Mat4& b) {
+  Mat4 r{};
+  for (int c = 0; c < 4; ++c)
+    for (int rr = 0; rr < 4; ++rr) {
+      double s = 0;
+      for (int k = 0; k < 4; ++k) s += double(a[k * 4 + rr]) * b[c * 4 + k];
+      r[c * 4 + rr] = float(s);
+    }
+  return r;
+}
+
+Mat4 normalMatrix(const Mat4& m) {
+  double a[3][3];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) a[r][c] = m[c * 4 + r];
+  double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+               a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  Mat4 n = identity();
+  if (det == 0) return n;
+  // inverse-transpose = cofactor matrix / det
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+      n[c * 4 + r] = float((a[r1][c1] * a[r2][c2] - a[r1][c2] * a[r2][c1]) / det);
+    }
+  return n;
+}
+
+namespace {
+
+Vec3 sub(Vec3 a, Vec3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 cross3(Vec3 a, Vec3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+Vec3 norm3(Vec3 a) {
+  double l = std::sqrt(double(a[0]) * a[0] + double(a[1]) * a[1] + double(a[2]) * a[2]);
+  return {float(a[0] / l), float(a[1] / l), float(a[2] / l)};
+}
+float dot3(Vec3 a, Vec3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Strict reader: every key is known, every value has the expected type, and errors name the file,
+// the key path and what was expected.
+struct Reader {
+  std::string file;
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw SceneError(file + ": " + key + ": " + what);
+  }
+  void keys(const json& j, const std::string& where, std::set<std::string> allowed) const {
+    if (!j.is_object()) fail(where, "expected an object");
+    for (auto& [k, v] : j.items())
+      if (!allowed.count(k)) {
+        std::string list;
+        for (auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(where.empty() ? k : where + "." + k, "unknown key (expected one of: " + list + ")");
+      }
+  }
+  float number(const json& j, const std::string& key, float def, float lo, float hi) const {
+    if (!j.contains(key.substr(key.rfind('.') + 1))) return def;
+    const json& v = j.at(key.substr(key.rfind('.') + 1));
+    if (!v.is_number()) fail(key, "expected a number, got " + v.dump());
+    double d = v.get<double>();
+    if (!(d >= lo && d <= hi)) fail(key, "expected a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + v.dump());
+    return float(d);
+  }
+  Vec3 vec3(const json& j, const std::string& key, Vec3 def) const {
+    auto k = key.substr(key.rfind('.') + 1);
+    if (!j.contains(k)) return def;
+    const json& v = j.at(k);
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+      fail(key, "expected an array of 3 numbers, got " + v.dump());
+    Vec3 r{v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
+    for (float c : r)
+      if (!std::isfinite(c)) fail(key, "expected finite numbers");
+    return r;
+  }
+  std::string string(const json& j, const std::string& key, const std::string& def, bool required = false) const {
+    auto k = key.substr(key.rfind('.') + 1);
+    if (!j.contains(k)) {
+      if (required) fail(key, "missing (expected a string)");
+      return def;
+    }
+    if (!j.at(k).is_string()) fail(key, "expected a string, got " + j.at(k).dump());
+    return j.at(k).get<std::string>();
+  }
+};
+
+Mat4 translate(Vec3 t) {
+  Mat4 m = identity();
+  m[12] = t[0], m[13] = t[1], m[14] = t[2];
+  return m;
+}
+Mat4 scale(float s) {
+  Mat4 m = identity();
+  m[0] = m[5] = m[10] = s;
+  return m;
+}
+Mat4 rotateY(float deg) {
+  double a = deg * std::numbers::pi / 180.0;
+  Mat4 m = identity();
+  m[0] = float(std::cos(a)), m[8] = float(std::sin(a)), m[2] = float(-std::sin(a)), m[10] = float(std::cos(a));
+  return m;
+}
+
+std::array<Vec3, 2> meshBounds(const Mesh& m) {
+  Vec3 lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+  for (auto& p : m.positions)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+  return {lo, hi};
+}
+
+}  // namespace
+
+Mat4 Scene::view() const {
+  Vec3 f = norm3(sub(camera.target, camera.eye));
+  Vec3 s = norm3(cross3(f, camera.up));
+  Vec3 u = cross3(s, f);
+  // Camera space: x right, y down, z forward (Vulkan conventions, so the projection needs no flip).
+  Mat4 m = identity();
+  m[0] = s[0], m[4] = s[1], m[8] = s[2];
+  m[1] = -u[0], m[5] = -u[1], m[9] = -u[2];
+  m[2] = f[0], m[6] = f[1], m[10] = f[2];
+  m[12] = -dot3(s, camera.eye), m[13] = dot3(u, camera.eye), m[14] = -dot3(f, camera.eye);
+  return m;
+}
+
+Mat4 Scene::projection() const {
+  const double t = std::tan(camera.fovY * std::numbers::pi / 360.0), aspect = double(width) / height;
+  const double n = camera.near, f = camera.far;
+  Mat4 p{};
+  p[0] = float(1.0 / (t * aspect));
+  p[5] = float(1.0 / t);
+  p[10] = float(f / (f - n));  // z_ndc = f (z - n) / ((f - n) z): 0 at near, 1 at far
+  p[11] = 1.0f;
+  p[14] = float(-f * n / (f - n));
+  return p;
+}
+
+Mat4 Scene::viewProjection() const { return mul(projection(), view()); }
+
+std::array<Vec3, 2> Scene::bounds() const {
+  Vec3 lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+  for (auto& o : objects)
+    for (auto& p : meshes[o.mesh].positions)
+      for (int k = 0; k < 3; ++k) {
+        float w = o.model[k] * p[0] + o.model[4 + k] * p[1] + o.model[8 + k] * p[2] + o.model[12 + k];
+        lo[k] = std::min(lo[k], w), hi[k] = std::max(hi[k], w);
+      }
+  return {lo, hi};
+}
+
+size_t Scene::triangles() const {
+  size_t n = 0;
+  for (auto& o : objects) n += meshes[o.mesh].triangles();
+  return n;
+}
+
+std::string defaultScenePath() { return "scenes/bunny.json"; }
+
+Scene loadScene(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw SceneError(path + ": cannot open scene file");
+  json j;
+  try {
+    j = json::parse(f, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    throw SceneError(path + ": not valid JSON: " + e.what());
+  }
+  Reader R{path};
+  R.keys(j, "", {"image", "camera", "environment", "technique", "materials", "objects", "description"});
+  const fs::path dir = fs::path(path).parent_path();
+  const fs::path root = fs::weakly_canonical(dir / "..");
+  Scene s;
+  s.path = path;
+  if (j.contains("image")) {
+    const json& im = j["image"];
+    R.keys(im, "image", {"width", "height"});
+    s.width = uint32_t(R.number(im, "image.width", 512, 1, 16384));
+    s.height = uint32_t(R.number(im, "image.height", 512, 1, 16384));
+  }
+  if (!j.contains("camera")) R.fail("camera", "missing (expected an object with eye, target, fov)");
+  {
+    const json& c = j["camera"];
+    R.keys(c, "camera", {"eye", "target", "up", "fov", "near", "far"});
+    s.camera.eye = R.vec3(c, "camera.eye", s.camera.eye);
+    s.camera.target = R.vec3(c, "camera.target", s.camera.target);
+    s.camera.up = R.vec3(c, "camera.up", s.camera.up);
+    s.camera.fovY = R.number(c, "camera.fov", 40, 1, 170);
+    s.camera.near = R.number(c, "camera.near", 0.1f, 1e-6f, 1e6f);
+    s.camera.far = R.number(c, "camera.far", 100, 1e-6f, 1e9f);
+    if (!(s.camera.far > s.camera.near)) R.fail("camera.far", "expected far > near");
+    Vec3 d = sub(s.camera.target, s.camera.eye);
+    if (dot3(d, d) == 0) R.fail("camera.target", "expected a point different from camera.eye");
+    Vec3 c3 = cross3(norm3(d), s.camera.up);
+    if (dot3(c3, c3) < 1e-12f) R.fail("camera.up", "expected a vector not parallel to the view direction");
+  }
+  if (!j.contains("environment")) R.fail("environment", "missing (expected {\"file\": \"../assets/hdri/forest.exr\"})");
+  {
+    const json& e = j["environment"];
+    R.keys(e, "environment", {"file", "intensity"});
+    std::string file = R.string(e, "environment.file", "", true);
+    fs::path p = fs::path(file).is_absolute() ? fs::path(file) : dir / file;
+    s.environment = p.lexically_normal().string();
+    if (!fs::exists(p))
+      R.fail("environment.file", "file not found: " + s.environment +
+                                     (file.find("assets/") != std::string::npos ? " (fetch the assets with: bash scripts/setup.sh)" : ""));
+    s.environmentIntensity = R.number(e, "environment.intensity", 1, 0, 1e9f);
+  }
+  s.technique = R.string(j, "technique", "mirror");
+  if (s.technique != "mirror") R.fail("technique", "unknown technique '" + s.technique + "' (expected: mirror)");
+
+  std::map<std::string, uint32_t> matIndex;
+  if (j.contains("materials")) {
+    if (!j["materials"].is_array()) R.fail("materials", "expected an array of objects");
+    for (size_t i = 0; i < j["materials"].size(); ++i) {
+      const json& m = j["materials"][i];
+      const std::string key = "materials[" + std::to_string(i) + "]";
+      R.keys(m, key, {"name", "diffuse", "specular", "brdf", "exponent", "roughness", "roughness_y"});
+      Material mat;
+      mat.name = R.string(m, key + ".name", "", true);
+      if (matIndex.count(mat.name)) R.fail(key + ".name", "duplicate material name '" + mat.name + "'");
+      mat.diffuse = R.vec3(m, key + ".diffuse", mat.diffuse);
+      mat.specular = R.vec3(m, key + ".specular", mat.specular);
+      mat.brdf = R.string(m, key + ".brdf", mat.brdf);
+      static const std::set<std::string> brdfs{"phong", "blinn", "ward", "lafortune", "ggx", "mirror"};
+      if (!brdfs.count(mat.brdf)) R.fail(key + ".brdf", "unknown BRDF '" + mat.brdf + "' (expected phong, blinn, ward, lafortune, ggx or mirror)");
+      mat.exponent = R.number(m, key + ".exponent", mat.exponent, 0, 1e7f);
+      mat.roughness = R.number(m, key + ".roughness", mat.roughness, 0, 1);
+      mat.roughnessY = R.number(m, key + ".roughness_y", mat.roughness, 0, 1);
+      matIndex[mat.name] = uint32_t(s.materials.size());
+      s.materials.push_back(mat);
+    }
+  }
+  if (s.materials.empty()) s.materials.push_back(Material{"default"});
+
+  if (!j.contains("objects") || !j["objects"].is_array() || j["objects"].empty())
+    R.fail("objects", "expected a non-empty array of objects");
+  std::map<std::string, uint32_t> meshIndex;
+  for (size_t i = 0; i < j["objects"].size(); ++i) {
+    const json& o = j["objects"][i];
+    const std::string key = "objects[" + std::to_string(i) + "]";
+    R.keys(o, key, {"name", "mesh", "material", "fit", "translate", "rotate_y", "scale"});
+    Object obj;
+    const std::string spec = R.string(o, key + ".mesh", "", true);
+    obj.name = R.string(o, key + ".name", spec);
+    if (!meshIndex.count(spec)) {
+      Mesh mesh;
+      try {
+        if (spec == "sphere") mesh = makeSphere();
+        else if (spec == "plane") mesh = makePlane();
+        else if (spec == "torus") mesh = makeTorus();
+        else if (spec == "npm:bunny") mesh = loadNpmMesh((root / "assets/npm/bunny/index.js").string());
+        else if (spec == "npm:teapot") mesh = loadNpmMesh((root / "assets/npm/teapot/teapot.js").string());
+        else if (spec.ends_with(".gltf") || spec.ends_with(".glb")) {
+          fs::path p = fs::path(spec).is_absolute() ? fs::path(spec) : dir / spec;
+          if (!fs::exists(p)) R.fail(key + ".mesh", "file not found: " + p.lexically_normal().string());
+          mesh = loadGltf(p.string());
+        } else {
+          R.fail(key + ".mesh", "unknown mesh '" + spec + "' (expected sphere, plane, torus, npm:bunny, npm:teapot or a .gltf/.glb path)");
+        }
+      } catch (const MeshError& e) {
+        R.fail(key + ".mesh", e.what());
+      }
+      meshIndex[spec] = uint32_t(s.meshes.size());
+      s.meshes.push_back(std::move(mesh));
+    }
+    obj.mesh = meshIndex[spec];
+    const std::string mname = R.string(o, key + ".material", s.materials[0].name);
+    if (!matIndex.empty() || j.contains("materials")) {
+      if (!matIndex.count(mname)) R.fail(key + ".material", "no material named '" + mname + "'");
+      obj.material = matIndex[mname];
+    }
+    // model = translate * rotateY * scale * fit; fit: largest extent -> `fit`, centred in x/z, base at y = 0
+    Mat4 fitM = identity();
+    if (o.contains("fit")) {
+      float size = R.number(o, key + ".fit", 1, 1e-6f, 1e6f);
+      auto b = meshBounds(s.meshes[obj.mesh]);
+      float ext = std::max({b[1][0] - b[0][0], b[1][1] - b[0][1], b[1][2] - b[0][2]});
+      float k = size / ext;
+      fitM = mul(scale(k), translate({-(b[0][0] + b[1][0]) / 2, -b[0][1], -(b[0][2] + b[1][2]) / 2}));
+    }
+    obj.model = mul(translate(R.vec3(o, key + ".translate", {0, 0, 0})),
+                    mul(rotateY(R.number(o, key + ".rotate_y", 0, -1e4f, 1e4f)),
+                        mul(scale(R.number(o, key + ".scale", 1, 1e-6f, 1e6f)), fitM)));
+    s.objects.push_back(obj);
+  }
+  return s;
+}
+
+}  // namespace shadetwin

@@ -1,0 +1,71 @@
+// Scene files (JSON, see README "Scene files"): meshes, per-object materials, camera, image size,
+// environment map. loadScene() validates everything and throws SceneError naming the file, the key
+// and what was expected; missing assets name the path and how to fetch them.
+#pragma once
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "scene/mesh.h"
+
+namespace shadetwin {
+
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+using Mat4 = std::array<float, 16>;  // column-major, as GLSL mat4
+using Vec3 = std::array<float, 3>;
+
+struct Material {
+  std::string name;
+  Vec3 diffuse{0.5f, 0.5f, 0.5f};  // albedo of the Lambertian term
+  Vec3 specular{0.04f, 0.04f, 0.04f};
+  std::string brdf = "phong";  // phong | blinn | ward | lafortune | ggx (FIS issue); "mirror" for a perfect mirror
+  float exponent = 100.0f;     // Phong / Blinn-Phong exponent
+  float roughness = 0.2f;      // GGX alpha / Ward alpha (x and y)
+  float roughnessY = 0.2f;
+};
+
+struct Object {
+  std::string name;
+  uint32_t mesh = 0;
+  uint32_t material = 0;
+  Mat4 model{};  // object -> world
+};
+
+struct Camera {
+  Vec3 eye{0, 0, 3}, target{0, 0, 0}, up{0, 1, 0};
+  float fovY = 40.0f;  // degrees
+  float near = 0.1f, far = 100.0f;
+};
+
+struct Scene {
+  std::string path;  // the scene file
+  uint32_t width = 512, height = 512;
+  Camera camera;
+  std::string environment;        // resolved path of the EXR/HDR
+  float environmentIntensity = 1.0f;
+  std::string technique = "mirror";  // shading technique (simple lookup until FIS lands)
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Object> objects;
+
+  Mat4 view() const;
+  Mat4 projection() const;  // Vulkan clip space: y down, depth [0, 1]
+  Mat4 viewProjection() const;
+  std::array<Vec3, 2> bounds() const;  // world-space AABB of every object
+  size_t triangles() const;
+};
+
+Scene loadScene(const std::string& path);
+/// The repository root guess used to resolve `assets/...`: the scene file's directory's parent.
+std::string defaultScenePath();
+
+Mat4 mul(const Mat4& a, const Mat4& b);
+Mat4 identity();
+/// Upper 3x3 inverse-transpose of `m` (normal matrix), returned as a Mat4 with zero translation.
+Mat4 normalMatrix(const Mat4& m);
+
+}  // namespace shadetwin

@@ -1,0 +1,45 @@
+// C++ side of `textureLod` in the shared dialect: a Sampler2D is an emulated texture + sampler +
+// device profile, and a lookup runs through the emulated texture unit (emu/sampler.h). In the SIMD
+// builds the N lanes are one device vector (lavapipe: 8 invocations), so the per-vector decisions of
+// the device's sampler are reproduced; the scalar build is the one-lane model. GLSL: sampler2D.
+#pragma once
+#include <cstring>
+
+#include "emu/lanes.h"
+#include "emu/sampler.h"
+#include "shade/vec.h"
+
+namespace shadetwin::shade {
+
+struct Sampler2D {
+  const emu::Texture* tex = nullptr;
+  emu::SamplerDesc desc;
+  const emu::DeviceProfile* dev = nullptr;
+};
+
+inline V4<float> textureLodLanes(const Sampler2D& s, float u, float v, float lod) {
+  emu::Texel4 t = emu::textureLod(*s.tex, s.desc, *s.dev, u, v, 0.0f, lod);
+  return V4<float>(t.r, t.g, t.b, t.a);
+}
+
+template <int N>
+V4<emu::F32<N>> textureLodLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v, emu::F32<N> lod) {
+  float q[4 * N], out[4 * N];
+  for (int i = 0; i < N; ++i) {
+    q[4 * i] = u[i];
+    q[4 * i + 1] = v[i];
+    q[4 * i + 2] = 0.0f;
+    q[4 * i + 3] = lod[i];
+  }
+  emu::textureLodVector(*s.tex, s.desc, *s.dev, q, out, N);
+  V4<emu::F32<N>> r;
+  for (int i = 0; i < N; ++i) {
+    r.x.set(i, out[4 * i]);
+    r.y.set(i, out[4 * i + 1]);
+    r.z.set(i, out[4 * i + 2]);
+    r.w.set(i, out[4 * i + 3]);
+  }
+  return r;
+}
+
+}  // namespace shadetwin::shade
