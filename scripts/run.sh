@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# The run command: set-up, build, then the main job. Until `shadetwin render` lands (issue 3) the
-# main job is the differential verification of the foundation against lavapipe.
+# The run command (the main job): set-up, build, then render the default scene (scenes/bunny.json)
+# on the emulated GPU to bunny.exr and bunny.png, printing the time of every pass.
+# Extra arguments go to `shadetwin render` (e.g. scenes/spheres.json --out out/spheres.exr).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 bash scripts/setup.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$(nproc)"
-build/shadetwin verify math --count "${COUNT:-1000000}"
-build/shadetwin verify texture --count "${COUNT_TEX:-100000}" --finite --filters texelFetch,nearest,nearest-miplin,bilinear,trilinear
+build/shadetwin render "$@"

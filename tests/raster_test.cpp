@@ -1,0 +1,249 @@
+// Emulated rasterizer: coverage rule, interpolation, depth test, quads, thread-count independence.
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "emu/raster.h"
+#include "render/gbuffer.h"
+#include "scene/scene.h"
+
+namespace {
+
+const emu::DeviceProfile& dev() { return emu::lavapipeProfile(); }
+
+// Window position (x, y in pixels, depth z) -> clip coordinates with w = 1 for a W x H target.
+void clipOf(float x, float y, float z, uint32_t W, uint32_t H, float* c) {
+  c[0] = x / (W * 0.5f) - 1.0f;
+  c[1] = y / (H * 0.5f) - 1.0f;
+  c[2] = z;
+  c[3] = 1.0f;
+}
+
+// Counts how many times each pixel is shaded across a set of triangles.
+std::vector<int> coverageCount(uint32_t W, uint32_t H, const std::vector<float>& clip, const std::vector<uint32_t>& idx) {
+  emu::Framebuffer fb(W, H, 1, 2.0f);  // depth test never rejects (z <= 2)
+  std::vector<int> count(size_t(W) * H, 0);
+  std::vector<float> vary(clip.size() / 4, 0.0f);
+  for (size_t t = 0; t < idx.size() / 3; ++t) {  // one draw per triangle: the depth test stays out of it
+    emu::DrawInput in;
+    in.clip = clip.data();
+    in.varyings = vary.data();
+    in.numVaryings = 1;
+    in.indices = idx.data() + 3 * t;
+    in.triangles = 1;
+    emu::draw(dev(), fb, in, [&](const emu::Quad& q, float (*out)[4]) {
+      for (int i = 0; i < 4; ++i) {
+        out[0][i] = 0.0f;
+        if (q.live & (1 << i)) ++count[size_t(q.y + (i >> 1)) * W + size_t(q.x + (i & 1))];
+      }
+    });
+  }
+  return count;
+}
+
+TEST(Raster, SharedEdgesCoverEachPixelExactlyOnce) {
+  // A fan of triangles around a centre, vertices on pixel centres and off them: every pixel centre
+  // inside the fan is shaded exactly once (top-left rule), none twice.
+  const uint32_t W = 64, H = 64;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> U(4.0f, 60.0f);
+  for (int trial = 0; trial < 20; ++trial) {
+    const bool snapped = trial % 2 == 0;
+    std::vector<float> clip;
+    std::vector<uint32_t> idx;
+    auto vert = [&](float x, float y) {
+      if (snapped) x = std::floor(x) + 0.5f, y = std::floor(y) + 0.5f;  // exactly on pixel centres: ties
+      float c[4];
+      clipOf(x, y, 0.5f, W, H, c);
+      clip.insert(clip.end(), c, c + 4);
+      return uint32_t(clip.size() / 4 - 1);
+    };
+    uint32_t centre = vert(32.0f, 32.0f);
+    const int n = 7;
+    std::vector<uint32_t> ring;
+    for (int k = 0; k < n; ++k) {
+      float a = float(k) * 6.2831853f / n + float(trial) * 0.1f;
+      ring.push_back(vert(32.0f + 24.0f * std::cos(a), 32.0f + 24.0f * std::sin(a)));
+    }
+    for (int k = 0; k < n; ++k) idx.insert(idx.end(), {centre, ring[size_t(k)], ring[size_t((k + 1) % n)]});
+    auto count = coverageCount(W, H, clip, idx);
+    int shaded = 0;
+    for (int c : count) {
+      EXPECT_LE(c, 1);
+      shaded += c;
+    }
+    EXPECT_GT(shaded, 1000) << "trial " << trial;
+  }
+}
+
+TEST(Raster, TopLeftRuleOnAxisAlignedSquare) {
+  // Square [8, 24] x [8, 24] in window coordinates: pixel centres at 8.5 .. 23.5 -> exactly 16 x 16
+  // pixels, and a square whose edges pass through pixel centres (8.5 .. 24.5) includes its left and
+  // top edges only: again 16 x 16, starting at pixel 8.
+  const uint32_t W = 32, H = 32;
+  for (float o : {0.0f, 0.5f}) {
+    std::vector<float> clip(16);
+    const float xs[4] = {8 + o, 24 + o, 24 + o, 8 + o}, ys[4] = {8 + o, 8 + o, 24 + o, 24 + o};
+    for (int i = 0; i < 4; ++i) clipOf(xs[i], ys[i], 0.5f, W, H, &clip[size_t(4 * i)]);
+    auto count = coverageCount(W, H, clip, {0, 1, 2, 0, 2, 3});
+    int total = 0;
+    for (uint32_t y = 0; y < H; ++y)
+      for (uint32_t x = 0; x < W; ++x) {
+        const bool inside = x >= 8 && x < 24 && y >= 8 && y < 24;
+        EXPECT_EQ(count[y * W + x], inside ? 1 : 0) << "offset " << o << " pixel " << x << "," << y;
+        total += count[y * W + x];
+      }
+    EXPECT_EQ(total, 256);
+  }
+}
+
+TEST(Raster, PerspectiveCorrectInterpolationAndDepth) {
+  // One triangle with different w per vertex: the interpolated varying equals the perspective-correct
+  // barycentric value (within float rounding), depth equals z/w interpolated linearly in screen space.
+  const uint32_t W = 64, H = 64;
+  const float clip[12] = {-0.8f * 1.0f, -0.8f * 1.0f, 0.2f, 1.0f, 0.9f * 4.0f, -0.7f * 4.0f, 0.5f * 4.0f, 4.0f,
+                          -0.6f * 2.0f, 0.9f * 2.0f,  0.3f * 2.0f, 2.0f};
+  const float vary[3] = {1.0f, 5.0f, -3.0f};
+  const uint32_t idx[3] = {0, 1, 2};
+  emu::Framebuffer fb(W, H, 1);
+  emu::DrawInput in{clip, vary, 1, idx, 1};
+  std::vector<float> val(size_t(W) * H, NAN);
+  emu::draw(dev(), fb, in, [&](const emu::Quad& q, float (*out)[4]) {
+    for (int i = 0; i < 4; ++i) out[0][i] = q.v[0][i];
+  });
+  // window positions
+  float wx[3], wy[3], wz[3], ww[3];
+  for (int i = 0; i < 3; ++i) {
+    ww[i] = clip[4 * i + 3];
+    wx[i] = clip[4 * i] / ww[i] * 32 + 32, wy[i] = clip[4 * i + 1] / ww[i] * 32 + 32, wz[i] = clip[4 * i + 2] / ww[i];
+  }
+  int checked = 0;
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) {
+      if (fb.depth[y * W + x] == 1.0f) continue;
+      double px = x + 0.5, py = y + 0.5;
+      double d = (wy[1] - wy[2]) * (wx[0] - wx[2]) + (wx[2] - wx[1]) * (wy[0] - wy[2]);
+      double b0 = ((wy[1] - wy[2]) * (px - wx[2]) + (wx[2] - wx[1]) * (py - wy[2])) / d;
+      double b1 = ((wy[2] - wy[0]) * (px - wx[2]) + (wx[0] - wx[2]) * (py - wy[2])) / d;
+      double b2 = 1 - b0 - b1;
+      double z = b0 * wz[0] + b1 * wz[1] + b2 * wz[2];
+      double iw = b0 / ww[0] + b1 / ww[1] + b2 / ww[2];
+      double v = (b0 * vary[0] / ww[0] + b1 * vary[1] / ww[1] + b2 * vary[2] / ww[2]) / iw;
+      EXPECT_NEAR(fb.depth[y * W + x], z, 1e-5) << x << "," << y;
+      EXPECT_NEAR(fb.color[y * W + x], v, 2e-4) << x << "," << y;
+      ++checked;
+    }
+  EXPECT_GT(checked, 500);
+}
+
+TEST(Raster, DepthTestLessOrEqualKeepsNearest) {
+  const uint32_t W = 16, H = 16;
+  emu::Framebuffer fb(W, H, 1);
+  for (float z : {0.7f, 0.3f, 0.5f, 0.3f}) {  // the second 0.3 passes (less-or-equal) and writes its id
+    float clip[12];
+    clipOf(0, 0, z, W, H, clip), clipOf(40, 0, z, W, H, clip + 4), clipOf(0, 40, z, W, H, clip + 8);
+    static int call = 0;
+    float id = float(++call);
+    float vary[3] = {id, id, id};
+    uint32_t idx[3] = {0, 1, 2};
+    emu::DrawInput in{clip, vary, 1, idx, 1};
+    emu::draw(dev(), fb, in, [&](const emu::Quad& q, float (*out)[4]) {
+      for (int i = 0; i < 4; ++i) out[0][i] = q.v[0][i];
+    });
+  }
+  EXPECT_EQ(fb.depth[5 * W + 5], 0.3f);
+  EXPECT_EQ(fb.color[5 * W + 5], 4.0f);
+}
+
+TEST(Raster, QuadDerivativesFineAndHelpers) {
+  // Varying = window x + 2 * window y: dFdx = 1 and dFdy = 2 everywhere, helper pixels included.
+  const uint32_t W = 32, H = 32;
+  float clip[12];
+  clipOf(3.3f, 2.1f, 0.5f, W, H, clip), clipOf(29.7f, 5.2f, 0.5f, W, H, clip + 4), clipOf(7.1f, 30.2f, 0.5f, W, H, clip + 8);
+  float vary[3];
+  const float pts[3][2] = {{3.3f, 2.1f}, {29.7f, 5.2f}, {7.1f, 30.2f}};
+  for (int i = 0; i < 3; ++i) vary[i] = pts[i][0] + 2 * pts[i][1];
+  uint32_t idx[3] = {0, 1, 2};
+  emu::Framebuffer fb(W, H, 2);
+  emu::DrawInput in{clip, vary, 1, idx, 1};
+  int partial = 0;
+  emu::draw(dev(), fb, in, [&](const emu::Quad& q, float (*out)[4]) {
+    float dx[4], dy[4];
+    emu::quadDerivatives(dev(), q.v[0], dx, dy);
+    if (q.covered != 15) ++partial;
+    for (int i = 0; i < 4; ++i) out[0][i] = dx[i], out[1][i] = dy[i];
+  });
+  int n = 0;
+  for (size_t p = 0; p < size_t(W) * H; ++p)
+    if (fb.depth[p] < 1.0f) {
+      EXPECT_NEAR(fb.color[2 * p], 1.0f, 1e-4);
+      EXPECT_NEAR(fb.color[2 * p + 1], 2.0f, 1e-4);
+      ++n;
+    }
+  EXPECT_GT(n, 200);
+  EXPECT_GT(partial, 10);  // edge quads ran with helper pixels
+}
+
+TEST(Raster, NearPlaneClipping) {
+  // A triangle crossing z = 0 is clipped, not dropped, and nothing behind the camera is drawn.
+  const uint32_t W = 32, H = 32;
+  const float clip[12] = {-0.5f, -0.5f, -0.5f, 1.0f, 0.5f, -0.5f, 0.5f, 1.0f, 0.0f, 0.5f, 0.5f, 1.0f};
+  const float vary[3] = {0, 0, 0};
+  const uint32_t idx[3] = {0, 1, 2};
+  emu::Framebuffer fb(W, H, 1);
+  emu::RasterStats st;
+  emu::DrawInput in{clip, vary, 1, idx, 1};
+  emu::draw(dev(), fb, in, [&](const emu::Quad&, float (*out)[4]) { for (int i = 0; i < 4; ++i) out[0][i] = 1; }, &st);
+  EXPECT_EQ(st.trianglesClipped, 1u);
+  EXPECT_GT(st.fragments, 20u);
+  for (float d : fb.depth) EXPECT_GE(d, 0.0f);
+}
+
+TEST(GBufferPass, ThreadCountIndependent) {
+  shadetwin::Scene s = shadetwin::loadScene(std::string(SHADETWIN_SOURCE_DIR) + "/scenes/spheres.json");
+  s.width = 256, s.height = 96;
+  std::vector<float> ref;
+  for (int threads : {1, 2, 16}) {
+    tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    shadetwin::GBuffer g = shadetwin::gbufferEmu(s, dev());
+    if (ref.empty()) {
+      ref = g.texels;
+      size_t geom = 0;
+      for (size_t p = 0; p < size_t(s.width) * s.height; ++p) geom += g.texels[p * shadetwin::kGbufFloats + 3] != 0.0f;
+      EXPECT_GT(geom, 3000u);
+    } else {
+      ASSERT_EQ(0, std::memcmp(ref.data(), g.texels.data(), ref.size() * 4)) << threads << " threads";
+    }
+  }
+}
+
+TEST(GBufferPass, SphereNormalsAndPositions) {
+  // Unit spheres: every G-buffer position lies on its sphere (within the tessellation's sagitta) and
+  // the interpolated normal points along (p - centre).
+  shadetwin::Scene s = shadetwin::loadScene(std::string(SHADETWIN_SOURCE_DIR) + "/scenes/spheres.json");
+  s.width = 256, s.height = 96;
+  shadetwin::GBuffer g = shadetwin::gbufferEmu(s, dev());
+  int checked = 0;
+  for (size_t p = 0; p < size_t(s.width) * s.height; ++p) {
+    const float* t = g.texels.data() + p * shadetwin::kGbufFloats;
+    if (t[3] == 0.0f) continue;
+    const int id = int(std::fabs(t[3])) - 1;
+    ASSERT_GE(id, 0);
+    ASSERT_LT(id, 4);
+    const float cx = s.objects[size_t(id)].model[12];
+    const double dx = t[0] - cx, dy = t[1], dz = t[2];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    EXPECT_NEAR(r, 1.0, 2e-3);
+    const double nl = std::sqrt(double(t[4]) * t[4] + double(t[5]) * t[5] + double(t[6]) * t[6]);
+    EXPECT_GT((dx * t[4] + dy * t[5] + dz * t[6]) / (r * nl), 0.999);
+    ++checked;
+  }
+  EXPECT_GT(checked, 3000);
+}
+
+}  // namespace

@@ -1,0 +1,123 @@
+// Scene files and meshes: the shipped scenes load; bad input names the file, the key and the problem.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "scene/mesh.h"
+#include "scene/scene.h"
+
+namespace {
+
+std::string src(const std::string& p) { return std::string(SHADETWIN_SOURCE_DIR) + "/" + p; }
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  auto dir = std::filesystem::path(SHADETWIN_SOURCE_DIR) / "build-test-scenes";
+  std::filesystem::create_directories(dir);
+  auto p = dir / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+std::string errorOf(const std::string& path) {
+  try {
+    shadetwin::loadScene(path);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scene, ShippedScenesLoad) {
+  for (const char* name : {"bunny", "spheres", "teapot"}) {
+    shadetwin::Scene s = shadetwin::loadScene(src(std::string("scenes/") + name + ".json"));
+    EXPECT_GT(s.triangles(), 100u) << name;
+    EXPECT_TRUE(std::filesystem::exists(s.environment)) << name;
+    for (auto& m : s.meshes) {
+      EXPECT_EQ(m.normals.size(), m.positions.size());
+      EXPECT_EQ(m.tangents.size(), m.positions.size());
+      EXPECT_EQ(m.uvs.size(), m.positions.size());
+    }
+  }
+  shadetwin::Scene b = shadetwin::loadScene(src("scenes/bunny.json"));
+  auto bounds = b.bounds();
+  EXPECT_NEAR(bounds[0][1], 0.0f, 1e-5f);  // "fit": base at y = 0
+}
+
+TEST(Scene, NpmMeshesAreTheRealOnes) {
+  shadetwin::Mesh bunny = shadetwin::loadNpmMesh(src("assets/npm/bunny/index.js"));
+  EXPECT_EQ(bunny.positions.size(), 1839u);  // the npm `bunny` package (Stanford bunny, reduced)
+  EXPECT_EQ(bunny.triangles(), 3674u);
+  shadetwin::Mesh teapot = shadetwin::loadNpmMesh(src("assets/npm/teapot/teapot.js"));
+  EXPECT_GT(teapot.triangles(), 6000u);
+  for (auto& n : bunny.normals) EXPECT_NEAR(std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), 1.0, 1e-5);
+}
+
+TEST(Scene, ErrorsNameFileKeyAndExpectation) {
+  const std::string ok = R"("camera": {"eye": [0, 0, 3], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/forest.exr"})";
+  std::string p = writeTemp("a.json", "{" + ok + R"(, "objects": [{"mesh": "cube"}]})");
+  std::string e = errorOf(p);
+  EXPECT_NE(e.find(p), std::string::npos) << e;
+  EXPECT_NE(e.find("objects[0].mesh"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown mesh 'cube'"), std::string::npos) << e;
+
+  p = writeTemp("b.json", "{" + ok + R"(, "objects": [{"mesh": "sphere"}], "camera_fov": 3})");
+  EXPECT_NE(errorOf(p).find("camera_fov: unknown key"), std::string::npos) << errorOf(p);
+
+  p = writeTemp("c.json", R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov": "wide"}, "environment": {"file": "../assets/hdri/forest.exr"}, "objects": [{"mesh": "sphere"}]})");
+  EXPECT_NE(errorOf(p).find("camera.fov: expected a number"), std::string::npos) << errorOf(p);
+
+  p = writeTemp("d.json", R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/nothere.exr"}, "objects": [{"mesh": "sphere"}]})");
+  e = errorOf(p);
+  EXPECT_NE(e.find("environment.file: file not found"), std::string::npos) << e;
+  EXPECT_NE(e.find("scripts/setup.sh"), std::string::npos) << e;
+
+  p = writeTemp("e.json", "{ \"camera\": ");
+  EXPECT_NE(errorOf(p).find("not valid JSON"), std::string::npos) << errorOf(p);
+
+  p = writeTemp("f.json", "{" + ok + R"(, "objects": [{"mesh": "sphere", "material": "gold"}], "materials": [{"name": "steel"}]})");
+  EXPECT_NE(errorOf(p).find("objects[0].material: no material named 'gold'"), std::string::npos) << errorOf(p);
+
+  EXPECT_NE(errorOf(src("scenes/missing.json")).find("cannot open scene file"), std::string::npos);
+}
+
+TEST(Mesh, BadNpmModuleAndIndices) {
+  std::string p = writeTemp("bad.js", "exports.positions=[[0,0,0],[1,0,0],[0,1,0]];exports.cells=[[0,1,7]]");
+  try {
+    shadetwin::loadNpmMesh(p);
+    FAIL() << "no error";
+  } catch (const shadetwin::MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("index 7 out of range"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(p), std::string::npos);
+  }
+  p = writeTemp("bad2.js", "exports.positions=[[0,0,0]");
+  EXPECT_THROW(shadetwin::loadNpmMesh(p), shadetwin::MeshError);
+  EXPECT_THROW(shadetwin::loadGltf(writeTemp("bad.gltf", "{}")), shadetwin::MeshError);
+}
+
+TEST(Mesh, GltfRoundTripMinimal) {
+  // A one-triangle glTF with an embedded base64 buffer: positions only; normals/UVs/tangents generated.
+  // buffer: 3 x vec3 float = 36 bytes.
+  const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::string raw(reinterpret_cast<const char*>(pos), 36);
+  static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string enc;
+  for (size_t i = 0; i < raw.size(); i += 3) {
+    uint32_t v = uint32_t(uint8_t(raw[i])) << 16 | uint32_t(uint8_t(raw[i + 1])) << 8 | uint8_t(raw[i + 2]);
+    for (int k = 3; k >= 0; --k) enc += b64[(v >> (6 * k)) & 63];
+  }
+  std::string gltf = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0, "translation": [0, 2, 0]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" + enc + R"("}]})";
+  shadetwin::Mesh m = shadetwin::loadGltf(writeTemp("tri.gltf", gltf));
+  ASSERT_EQ(m.triangles(), 1u);
+  EXPECT_EQ(m.positions[1][0], 1.0f);
+  EXPECT_EQ(m.positions[2][1], 3.0f);  // node translation applied
+  EXPECT_NEAR(m.normals[0][2], 1.0f, 1e-6f);
+}
+
+}  // namespace
