@@ -316,12 +316,22 @@ bool laneWantsLinear(const SamplerDesc& s, bool minify) {
   return (minify ? s.minFilter : s.magFilter) == Filter::Linear;
 }
 
+// Which path a sampler/texture pair takes: mixed mag/min filters (per-lane "both" path), lavapipe's
+// 8-bit fixed-point path (RGBA8, equal filters, no mirrored repeat), and whether mip levels lerp.
+struct SamplerPaths {
+  bool mixed, fixed, mipLinear;
+};
+SamplerPaths samplerPaths(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev) {
+  const bool mixed = s.minFilter != s.magFilter;
+  return {mixed,
+          dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&
+              s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat,
+          s.mipmapMode == MipmapMode::Linear && tex.levelCount() > 1};
+}
+
 Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, const LodInfo& L,
                  VectorFlags vf) {
-  const bool mipLinear = s.mipmapMode == MipmapMode::Linear && tex.levelCount() > 1;
-  const bool mixed = s.minFilter != s.magFilter;
-  const bool fixed = dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&
-                     s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat;
+  const auto [mixed, fixed, mipLinear] = samplerPaths(tex, s, dev);
   if (fixed) {  // AoS: per-lane lerp8 with weight 0 is exact, so vector grouping is invisible
     const Filter filter = L.minify ? s.minFilter : s.magFilter;
     Bytes4 c0 = sampleLevelFixed(tex, uint32_t(L.l0), L.layer, u, v, filter, s.addressU, s.addressV);
@@ -497,10 +507,7 @@ void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfi
     uint8_t b = flags[vectorOf[i]];
     return VectorFlags{(b & 1) != 0, (b & 2) != 0, (b & 4) != 0};
   };
-  const bool mixed = s.minFilter != s.magFilter;
-  const bool fixed = dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&
-                     s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat;
-  const bool mipLinear = s.mipmapMode == MipmapMode::Linear && tex.levelCount() > 1;
+  const auto [mixed, fixed, mipLinear] = samplerPaths(tex, s, dev);
   const size_t blocks = (n + kLanes - 1) / kLanes;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 256), [&](const tbb::blocked_range<size_t>& r) {
     DenormalScope mode(flush);
@@ -534,10 +541,7 @@ void textureLodVector(const Texture& tex, const SamplerDesc& s, const DeviceProf
     vf.needLinear |= laneWantsLinear(s, lods[k].minify);
     vf.anyMinify |= lods[k].minify;
   }
-  const bool mixed = s.minFilter != s.magFilter;
-  const bool fixed = dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&
-                     s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat;
-  const bool mipLinear = s.mipmapMode == MipmapMode::Linear && tex.levelCount() > 1;
+  const auto [mixed, fixed, mipLinear] = samplerPaths(tex, s, dev);
   if (mixed || fixed) {
     for (int k = 0; k < n; ++k) {
       Texel4 t = sampleOne(tex, s, dev, q[4 * k], q[4 * k + 1], lods[k], vf);

@@ -12,54 +12,6 @@ namespace {
 #include "gbuffer_vert.inc"
 
 using vk::check;
-
-struct Attachment {
-  VkDevice dev;
-  VkImage image = VK_NULL_HANDLE;
-  VkDeviceMemory mem = VK_NULL_HANDLE;
-  VkImageView view = VK_NULL_HANDLE;
-  Attachment(vk::Context& ctx, VkFormat format, uint32_t w, uint32_t h, bool depth) : dev(ctx.device()) {
-    VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    ii.imageType = VK_IMAGE_TYPE_2D;
-    ii.format = format;
-    ii.extent = {w, h, 1};
-    ii.mipLevels = 1;
-    ii.arrayLayers = 1;
-    ii.samples = VK_SAMPLE_COUNT_1_BIT;
-    ii.tiling = VK_IMAGE_TILING_OPTIMAL;
-    ii.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-               (depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
-    check(vkCreateImage(dev, &ii, nullptr, &image), "vkCreateImage(G-buffer)");
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(dev, image, &req);
-    VkMemoryAllocateInfo mi{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    mi.allocationSize = req.size;
-    mi.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, 0);
-    check(vkAllocateMemory(dev, &mi, nullptr, &mem), "vkAllocateMemory(G-buffer)");
-    vkBindImageMemory(dev, image, mem, 0);
-    VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    vi.image = image;
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    vi.format = format;
-    vi.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 1, 0, 1};
-    check(vkCreateImageView(dev, &vi, nullptr, &view), "vkCreateImageView(G-buffer)");
-  }
-  ~Attachment() {
-    vkDestroyImageView(dev, view, nullptr);
-    vkDestroyImage(dev, image, nullptr);
-    vkFreeMemory(dev, mem, nullptr);
-  }
-};
-
-VkShaderModule module(VkDevice dev, std::span<const uint32_t> code) {
-  VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  ci.codeSize = code.size() * 4;
-  ci.pCode = code.data();
-  VkShaderModule m;
-  check(vkCreateShaderModule(dev, &ci, nullptr, &m), "vkCreateShaderModule(G-buffer)");
-  return m;
-}
-
 }  // namespace
 
 GBuffer gbufferVulkan(vk::Context& ctx, const Scene& scene) {
@@ -79,10 +31,10 @@ GBuffer gbufferVulkan(vk::Context& ctx, const Scene& scene) {
   const Mat4 vp = scene.viewProjection();
   std::memcpy(frame.data(), vp.data(), 64);
   // Attachments, render pass, framebuffer.
-  std::vector<std::unique_ptr<Attachment>> att;
+  std::vector<std::unique_ptr<vk::RenderTarget>> att;
   for (int i = 0; i < kGbufAttachments; ++i)
-    att.push_back(std::make_unique<Attachment>(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, W, H, false));
-  att.push_back(std::make_unique<Attachment>(ctx, VK_FORMAT_D32_SFLOAT, W, H, true));
+    att.push_back(std::make_unique<vk::RenderTarget>(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, W, H, false));
+  att.push_back(std::make_unique<vk::RenderTarget>(ctx, VK_FORMAT_D32_SFLOAT, W, H, true));
   VkAttachmentDescription ad[kGbufAttachments + 1];
   VkAttachmentReference refs[kGbufAttachments];
   for (int i = 0; i <= kGbufAttachments; ++i) {
@@ -118,7 +70,7 @@ GBuffer gbufferVulkan(vk::Context& ctx, const Scene& scene) {
   VkRenderPass rp;
   check(vkCreateRenderPass(dev, &rpi, nullptr, &rp), "vkCreateRenderPass(G-buffer)");
   VkImageView views[kGbufAttachments + 1];
-  for (int i = 0; i <= kGbufAttachments; ++i) views[i] = att[size_t(i)]->view;
+  for (int i = 0; i <= kGbufAttachments; ++i) views[i] = att[size_t(i)]->view();
   VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   fi.renderPass = rp;
   fi.attachmentCount = kGbufAttachments + 1;
@@ -145,7 +97,7 @@ GBuffer gbufferVulkan(vk::Context& ctx, const Scene& scene) {
   pli.pPushConstantRanges = &pcr;
   VkPipelineLayout pl;
   check(vkCreatePipelineLayout(dev, &pli, nullptr, &pl), "vkCreatePipelineLayout(G-buffer)");
-  VkShaderModule vsm = module(dev, kSpv_gbuffer_vert), fsm = module(dev, kSpv_gbuffer_frag);
+  VkShaderModule vsm = vk::makeShaderModule(dev, kSpv_gbuffer_vert), fsm = vk::makeShaderModule(dev, kSpv_gbuffer_frag);
   VkPipelineShaderStageCreateInfo stages[2] = {
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vsm, "main", nullptr},
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, fsm, "main", nullptr}};
@@ -252,7 +204,7 @@ GBuffer gbufferVulkan(vk::Context& ctx, const Scene& scene) {
       VkBufferImageCopy c{};
       c.imageSubresource = {VkImageAspectFlags(i < kGbufAttachments ? VK_IMAGE_ASPECT_COLOR_BIT : VK_IMAGE_ASPECT_DEPTH_BIT), 0, 0, 1};
       c.imageExtent = {W, H, 1};
-      vkCmdCopyImageToBuffer(cmd, att[size_t(i)]->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rb[size_t(i)]->handle(), 1, &c);
+      vkCmdCopyImageToBuffer(cmd, att[size_t(i)]->image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, rb[size_t(i)]->handle(), 1, &c);
     }
     VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &mb, 0, nullptr, 0, nullptr);

@@ -22,23 +22,15 @@ double ms(Clock::time_point t0) { return std::chrono::duration<double, std::mill
 }  // namespace
 
 CameraRays cameraRays(const Scene& scene) {
-  const Camera& c = scene.camera;
-  double f[3] = {double(c.target[0]) - c.eye[0], double(c.target[1]) - c.eye[1], double(c.target[2]) - c.eye[2]};
-  auto norm = [](double* v) {
-    double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int k = 0; k < 3; ++k) v[k] /= l;
-  };
-  norm(f);
-  double s[3] = {f[1] * c.up[2] - f[2] * c.up[1], f[2] * c.up[0] - f[0] * c.up[2], f[0] * c.up[1] - f[1] * c.up[0]};
-  norm(s);
-  double u[3] = {s[1] * f[2] - s[2] * f[1], s[2] * f[0] - s[0] * f[2], s[0] * f[1] - s[1] * f[0]};
-  const double t = std::tan(c.fovY * 3.14159265358979323846 / 360.0), aspect = double(scene.width) / scene.height;
+  const CameraBasis b = scene.basis();
+  const double t = std::tan(scene.camera.fovY * 3.14159265358979323846 / 360.0);
+  const double aspect = double(scene.width) / scene.height;
   CameraRays r;
   for (int k = 0; k < 3; ++k) {
-    r.eye[k] = c.eye[k];
-    r.fwd[k] = float(f[k]);
-    r.right[k] = float(s[k] * t * aspect);
-    r.down[k] = float(-u[k] * t);
+    r.eye[k] = scene.camera.eye[k];
+    r.fwd[k] = b.forward[size_t(k)];
+    r.right[k] = float(b.right[size_t(k)] * t * aspect);
+    r.down[k] = float(-b.up[size_t(k)] * t);
   }
   return r;
 }

@@ -15,24 +15,31 @@
 namespace shadetwin {
 namespace {
 
-using F3 = std::array<float, 3>;
-F3 sub(F3 a, F3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-F3 crossv(F3 a, F3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
-double dotv(F3 a, F3 b) { return double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]; }
-F3 normalized(F3 a, F3 fallback) {
-  double l = std::sqrt(dotv(a, a));
-  if (!(l > 1e-30)) return fallback;
-  return {float(a[0] / l), float(a[1] / l), float(a[2] / l)};
-}
+using v3::F3;
+using v3::normalized;
+using v3::sub;
 
 // Any unit vector orthogonal to n.
 F3 orthogonal(F3 n) {
   F3 a = std::fabs(n[0]) < 0.9f ? F3{1, 0, 0} : F3{0, 1, 0};
-  F3 t = crossv(a, n);
-  return normalized(crossv(n, t), {1, 0, 0});
+  F3 t = v3::cross(a, n);
+  return normalized(v3::cross(n, t), {1, 0, 0});
 }
 
 }  // namespace
+
+F3 v3::normalized(F3 a, F3 fallback) {
+  double l = std::sqrt(dot(a, a));
+  if (!(l > 1e-30)) return fallback;
+  return {float(a[0] / l), float(a[1] / l), float(a[2] / l)};
+}
+
+std::array<F3, 2> meshBounds(const Mesh& m) {
+  F3 lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+  for (auto& p : m.positions)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+  return {lo, hi};
+}
 
 Mesh makeSphere(uint32_t segments, uint32_t rings) {
   Mesh m;
@@ -98,16 +105,14 @@ void completeMesh(Mesh& m) {
     m.normals.assign(n, {0, 0, 0});
     for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
       uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
-      F3 f = crossv(sub(m.positions[b], m.positions[a]), sub(m.positions[c], m.positions[a]));  // |f| = 2 area
+      F3 f = v3::cross(sub(m.positions[b], m.positions[a]), sub(m.positions[c], m.positions[a]));  // |f| = 2 area
       for (uint32_t v : {a, b, c})
         for (int k = 0; k < 3; ++k) m.normals[v][k] += f[k];
     }
     for (auto& nv : m.normals) nv = normalized(nv, {0, 1, 0});
   }
   if (m.uvs.size() != n) {  // spherical about the bounding-box centre
-    F3 lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
-    for (auto& p : m.positions)
-      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+    const auto [lo, hi] = meshBounds(m);
     F3 c{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
     m.uvs.resize(n);
     for (size_t i = 0; i < n; ++i) {
@@ -134,10 +139,10 @@ void completeMesh(Mesh& m) {
     m.tangents.resize(n);
     for (size_t i = 0; i < n; ++i) {
       F3 nn = m.normals[i];
-      double d = dotv(nn, t[i]);
+      double d = v3::dot(nn, t[i]);
       F3 tt{float(t[i][0] - nn[0] * d), float(t[i][1] - nn[1] * d), float(t[i][2] - nn[2] * d)};
       tt = normalized(tt, orthogonal(nn));
-      float w = dotv(crossv(nn, tt), b[i]) < 0.0 ? -1.0f : 1.0f;
+      float w = v3::dot(v3::cross(nn, tt), b[i]) < 0.0 ? -1.0f : 1.0f;
       m.tangents[i] = {tt[0], tt[1], tt[2], w};
     }
   }

@@ -33,6 +33,22 @@ Mesh loadNpmMesh(const std::string& path);
 /// transforms applied. Missing normals / UVs / tangents are generated.
 Mesh loadGltf(const std::string& path);
 
+/// Small 3-vector helpers of the host-side geometry code (scene set-up, mesh completion). Lengths
+/// and dot products accumulate in double.
+namespace v3 {
+using F3 = std::array<float, 3>;
+inline F3 sub(F3 a, F3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline F3 cross(F3 a, F3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+inline double dot(F3 a, F3 b) {
+  return double(a[0]) * double(b[0]) + double(a[1]) * double(b[1]) + double(a[2]) * double(b[2]);
+}
+/// a / |a|, or `fallback` when |a| is 0 or not finite.
+F3 normalized(F3 a, F3 fallback);
+}  // namespace v3
+
+/// Axis-aligned bounds {min, max} of the positions.
+std::array<std::array<float, 3>, 2> meshBounds(const Mesh& m);
+
 /// Fills normals (area-weighted face normals) when absent, UVs (spherical) when absent, and
 /// tangents (from UV gradients, Gram-Schmidt against the normal) when absent.
 void completeMesh(Mesh& m);

@@ -46,13 +46,10 @@ Mat4 normalMatrix(const Mat4& m) {
 
 namespace {
 
-Vec3 sub(Vec3 a, Vec3 b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross3(Vec3 a, Vec3 b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
-Vec3 norm3(Vec3 a) {
-  double l = std::sqrt(double(a[0]) * a[0] + double(a[1]) * a[1] + double(a[2]) * a[2]);
-  return {float(a[0] / l), float(a[1] / l), float(a[2] / l)};
-}
-float dot3(Vec3 a, Vec3 b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using v3::cross;
+using v3::sub;
+Vec3 norm3(Vec3 a) { return v3::normalized(a, a); }
+float dot3(Vec3 a, Vec3 b) { return float(v3::dot(a, b)); }
 
 // Strict reader: every key is known, every value has the expected type, and errors name the file,
 // the key path and what was expected.
@@ -117,19 +114,16 @@ Mat4 rotateY(float deg) {
   return m;
 }
 
-std::array<Vec3, 2> meshBounds(const Mesh& m) {
-  Vec3 lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
-  for (auto& p : m.positions)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-  return {lo, hi};
-}
-
 }  // namespace
 
-Mat4 Scene::view() const {
+CameraBasis Scene::basis() const {
   Vec3 f = norm3(sub(camera.target, camera.eye));
-  Vec3 s = norm3(cross3(f, camera.up));
-  Vec3 u = cross3(s, f);
+  Vec3 s = norm3(cross(f, camera.up));
+  return {s, cross(s, f), f};
+}
+
+Mat4 Scene::view() const {
+  const auto [s, u, f] = basis();
   // Camera space: x right, y down, z forward (Vulkan conventions, so the projection needs no flip).
   Mat4 m = identity();
   m[0] = s[0], m[4] = s[1], m[8] = s[2];
@@ -206,7 +200,7 @@ Scene loadScene(const std::string& path) {
     if (!(s.camera.far > s.camera.near)) R.fail("camera.far", "expected far > near");
     Vec3 d = sub(s.camera.target, s.camera.eye);
     if (dot3(d, d) == 0) R.fail("camera.target", "expected a point different from camera.eye");
-    Vec3 c3 = cross3(norm3(d), s.camera.up);
+    Vec3 c3 = cross(norm3(d), s.camera.up);
     if (dot3(c3, c3) < 1e-12f) R.fail("camera.up", "expected a vector not parallel to the view direction");
   }
   if (!j.contains("environment")) R.fail("environment", "missing (expected {\"file\": \"../assets/hdri/forest.exr\"})");

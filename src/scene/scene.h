@@ -41,6 +41,11 @@ struct Camera {
   float near = 0.1f, far = 100.0f;
 };
 
+/// Orthonormal camera frame: right, up (world up made orthogonal), forward (eye -> target).
+struct CameraBasis {
+  Vec3 right, up, forward;
+};
+
 struct Scene {
   std::string path;  // the scene file
   uint32_t width = 512, height = 512;
@@ -52,6 +57,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Object> objects;
 
+  CameraBasis basis() const;
   Mat4 view() const;
   Mat4 projection() const;  // Vulkan clip space: y down, depth [0, 1]
   Mat4 viewProjection() const;

@@ -293,8 +293,7 @@ Sampler::~Sampler() { vkDestroySampler(ctx_.device(), sampler_, nullptr); }
 
 // ---------------------------------------------------------------------------------------------
 
-namespace {
-VkShaderModule makeModule(VkDevice dev, std::span<const uint32_t> code) {
+VkShaderModule makeShaderModule(VkDevice dev, std::span<const uint32_t> code) {
   VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   ci.codeSize = code.size_bytes();
   ci.pCode = code.data();
@@ -302,7 +301,41 @@ VkShaderModule makeModule(VkDevice dev, std::span<const uint32_t> code) {
   check(vkCreateShaderModule(dev, &ci, nullptr, &m), "vkCreateShaderModule");
   return m;
 }
-}  // namespace
+
+RenderTarget::RenderTarget(Context& ctx, VkFormat format, uint32_t width, uint32_t height, bool depth)
+    : ctx_(ctx), width_(width), height_(height) {
+  VkDevice dev = ctx.device();
+  VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  ii.imageType = VK_IMAGE_TYPE_2D;
+  ii.format = format;
+  ii.extent = {width, height, 1};
+  ii.mipLevels = 1;
+  ii.arrayLayers = 1;
+  ii.samples = VK_SAMPLE_COUNT_1_BIT;
+  ii.tiling = VK_IMAGE_TILING_OPTIMAL;
+  ii.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+             (depth ? VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
+  check(vkCreateImage(dev, &ii, nullptr, &image_), "vkCreateImage(render target)");
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(dev, image_, &req);
+  VkMemoryAllocateInfo mi{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mi.allocationSize = req.size;
+  mi.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, 0);
+  check(vkAllocateMemory(dev, &mi, nullptr, &memory_), "vkAllocateMemory(render target)");
+  vkBindImageMemory(dev, image_, memory_, 0);
+  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  vi.image = image_;
+  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  vi.format = format;
+  vi.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, 1, 0, 1};
+  check(vkCreateImageView(dev, &vi, nullptr, &view_), "vkCreateImageView(render target)");
+}
+
+RenderTarget::~RenderTarget() {
+  vkDestroyImageView(ctx_.device(), view_, nullptr);
+  vkDestroyImage(ctx_.device(), image_, nullptr);
+  vkFreeMemory(ctx_.device(), memory_, nullptr);
+}
 
 Kernel::Kernel(Context& ctx, Stage stage, std::span<const uint32_t> spirv, std::span<const VkDescriptorType> layout,
                uint32_t pushBytes, std::span<const uint32_t> vertexSpirv)
@@ -330,7 +363,7 @@ Kernel::Kernel(Context& ctx, Stage stage, std::span<const uint32_t> spirv, std::
   dpi.poolSizeCount = uint32_t(sizes.size());
   dpi.pPoolSizes = sizes.data();
   check(vkCreateDescriptorPool(dev, &dpi, nullptr, &descPool_), "vkCreateDescriptorPool");
-  module_ = makeModule(dev, spirv);
+  module_ = makeShaderModule(dev, spirv);
   if (stage == Stage::Compute) {
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module_, "main", nullptr};
@@ -339,7 +372,7 @@ Kernel::Kernel(Context& ctx, Stage stage, std::span<const uint32_t> spirv, std::
     return;
   }
   if (vertexSpirv.empty()) throw Error("fragment kernel needs a vertex shader");
-  vertModule_ = makeModule(dev, vertexSpirv);
+  vertModule_ = makeShaderModule(dev, vertexSpirv);
   VkAttachmentDescription att{};
   att.format = VK_FORMAT_R8G8B8A8_UNORM;
   att.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -400,54 +433,24 @@ Kernel::Kernel(Context& ctx, Stage stage, std::span<const uint32_t> spirv, std::
 }
 
 void Kernel::buildFragmentTarget(uint32_t width, uint32_t height) {
-  if (target_ && targetW_ == width && targetH_ == height) return;
+  if (target_ && target_->width() == width && target_->height() == height) return;
   destroyFragmentTarget();
-  VkDevice dev = ctx_.device();
-  VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  ii.imageType = VK_IMAGE_TYPE_2D;
-  ii.format = VK_FORMAT_R8G8B8A8_UNORM;
-  ii.extent = {width, height, 1};
-  ii.mipLevels = 1;
-  ii.arrayLayers = 1;
-  ii.samples = VK_SAMPLE_COUNT_1_BIT;
-  ii.tiling = VK_IMAGE_TILING_OPTIMAL;
-  ii.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-  check(vkCreateImage(dev, &ii, nullptr, &target_), "vkCreateImage(target)");
-  VkMemoryRequirements req;
-  vkGetImageMemoryRequirements(dev, target_, &req);
-  VkMemoryAllocateInfo mi{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mi.allocationSize = req.size;
-  mi.memoryTypeIndex = ctx_.memoryType(req.memoryTypeBits, 0);
-  check(vkAllocateMemory(dev, &mi, nullptr, &targetMem_), "vkAllocateMemory(target)");
-  vkBindImageMemory(dev, target_, targetMem_, 0);
-  VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  vi.image = target_;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  vi.format = VK_FORMAT_R8G8B8A8_UNORM;
-  vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  check(vkCreateImageView(dev, &vi, nullptr, &targetView_), "vkCreateImageView(target)");
+  target_ = std::make_unique<RenderTarget>(ctx_, VK_FORMAT_R8G8B8A8_UNORM, width, height, false);
+  VkImageView view = target_->view();
   VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   fi.renderPass = renderPass_;
   fi.attachmentCount = 1;
-  fi.pAttachments = &targetView_;
+  fi.pAttachments = &view;
   fi.width = width;
   fi.height = height;
   fi.layers = 1;
-  check(vkCreateFramebuffer(dev, &fi, nullptr, &framebuffer_), "vkCreateFramebuffer");
-  targetW_ = width;
-  targetH_ = height;
+  check(vkCreateFramebuffer(ctx_.device(), &fi, nullptr, &framebuffer_), "vkCreateFramebuffer");
 }
 
 void Kernel::destroyFragmentTarget() {
-  VkDevice dev = ctx_.device();
-  if (framebuffer_) vkDestroyFramebuffer(dev, framebuffer_, nullptr);
-  if (targetView_) vkDestroyImageView(dev, targetView_, nullptr);
-  if (target_) vkDestroyImage(dev, target_, nullptr);
-  if (targetMem_) vkFreeMemory(dev, targetMem_, nullptr);
+  if (framebuffer_) vkDestroyFramebuffer(ctx_.device(), framebuffer_, nullptr);
   framebuffer_ = VK_NULL_HANDLE;
-  targetView_ = VK_NULL_HANDLE;
-  target_ = VK_NULL_HANDLE;
-  targetMem_ = VK_NULL_HANDLE;
+  target_.reset();
 }
 
 void Kernel::run(std::span<const Binding> bindings, const void* push, uint32_t count, uint32_t width) {

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -100,6 +101,28 @@ class Image {
   VkImageView view_ = VK_NULL_HANDLE;
 };
 
+/// A 2D render target (color or depth attachment, also a transfer source) with its memory and view.
+class RenderTarget {
+ public:
+  RenderTarget(Context& ctx, VkFormat format, uint32_t width, uint32_t height, bool depth);
+  ~RenderTarget();
+  RenderTarget(const RenderTarget&) = delete;
+  RenderTarget& operator=(const RenderTarget&) = delete;
+  VkImage image() const { return image_; }
+  VkImageView view() const { return view_; }
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+
+ private:
+  Context& ctx_;
+  VkImage image_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  VkImageView view_ = VK_NULL_HANDLE;
+  uint32_t width_, height_;
+};
+
+VkShaderModule makeShaderModule(VkDevice dev, std::span<const uint32_t> spirv);
+
 class Sampler {
  public:
   Sampler(Context& ctx, const VkSamplerCreateInfo& info);
@@ -149,11 +172,8 @@ class Kernel {
   std::vector<VkDescriptorType> layout_;
   // fragment target
   VkRenderPass renderPass_ = VK_NULL_HANDLE;
-  VkImage target_ = VK_NULL_HANDLE;
-  VkDeviceMemory targetMem_ = VK_NULL_HANDLE;
-  VkImageView targetView_ = VK_NULL_HANDLE;
+  std::unique_ptr<RenderTarget> target_;
   VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
-  uint32_t targetW_ = 0, targetH_ = 0;
 };
 
 }  // namespace shadetwin::vk
