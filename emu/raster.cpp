@@ -250,18 +250,20 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
           ++quads;
           if (!live) continue;
           q.live = live;
-          for (int i = 0; i < 4; ++i) {
-            const float px = float(qx + (i & 1)), py = float(qy + (i >> 1));
-            const float oow = 1.0f / interp(fused, s->w, px, py);
-            for (int k = 0; k < nv; ++k) q.v[k][i] = interp(fused, s->v[k], px, py) * oow;
+          if (fs) {
+            for (int i = 0; nv > 0 && i < 4; ++i) {
+              const float px = float(qx + (i & 1)), py = float(qy + (i >> 1));
+              const float oow = 1.0f / interp(fused, s->w, px, py);
+              for (int k = 0; k < nv; ++k) q.v[k][i] = interp(fused, s->v[k], px, py) * oow;
+            }
+            fs(q, out);
           }
-          fs(q, out);
           for (int i = 0; i < 4; ++i) {
             if (!(live & (1u << i))) continue;
             const size_t at = size_t(qy + (i >> 1)) * fb.width + size_t(qx + (i & 1));
             fb.depth[at] = q.z[i];
             float* dst = fb.color.data() + at * size_t(fb.numOutputs);
-            for (int k = 0; k < fb.numOutputs; ++k) dst[k] = out[k][i];
+            for (int k = 0; fs && k < fb.numOutputs; ++k) dst[k] = out[k][i];
             ++frags;
           }
         }

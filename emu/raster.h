@@ -66,7 +66,8 @@ struct RasterStats {
 };
 
 /// Rasterizes one draw into `fb` (depth test less-or-equal with depth writes), running `fs` on every
-/// quad with at least one live pixel; outputs of live pixels are written. Parallel over 64x64 tiles.
+/// quad with at least one live pixel; outputs of live pixels are written. An empty `fs` is a
+/// depth-only pipeline (no fragment shader: nothing is interpolated but depth). Parallel over 64x64 tiles.
 void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const FragmentFn& fs,
           RasterStats* stats = nullptr);
 

@@ -49,10 +49,6 @@ struct GbufferStats {
 /// Emulated G-buffer pass (every object one draw, in scene order).
 GBuffer gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GbufferStats* stats = nullptr);
 
-namespace vk { class Context; }
-/// The same pass on a Vulkan device (graphics pipeline), read back into the same layout.
-GBuffer gbufferVulkan(vk::Context& ctx, const Scene& scene);
-
 /// Camera basis for primary rays (shade/shade_mirror.h cameraRay), from the scene on the host.
 struct CameraRays {
   float eye[3], fwd[3], right[3], down[3];

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 #include "emu/device_profile.h"
@@ -11,6 +12,8 @@
 #include "image_io.h"
 #include "mips.h"
 #include "render/gbuffer.h"
+#include "render/passes_vk.h"
+#include "vk/context.h"
 #include "scene/scene.h"
 
 namespace shadetwin {
@@ -63,20 +66,43 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
   const double tScene = ms(t0);
-  if (opts.device != "emu") throw std::invalid_argument("--device " + opts.device + ": only 'emu' renders frames so far (the Vulkan shading pass is not built yet)");
+  if (opts.device != "emu" && opts.device != "vulkan") throw std::invalid_argument("--device " + opts.device + ": expected emu or vulkan");
   const emu::DeviceProfile& dev = emu::profileByName(opts.profile);
   log << "scene " << opts.scene << ": " << scene.objects.size() << " objects, " << scene.triangles() << " triangles, "
       << scene.width << "x" << scene.height << ", environment " << scene.environment << "\n";
   t0 = Clock::now();
   EnvironmentMap env = loadEnvironment(scene.environment, log);
   const double tEnv = ms(t0);
-  GbufferStats gs;
-  t0 = Clock::now();
-  GBuffer g = gbufferEmu(scene, dev, &gs);
-  const double tGbuf = ms(t0);
-  t0 = Clock::now();
-  std::vector<float> image = shadeEmu(scene, g, *env.texture, dev);
-  const double tShade = ms(t0);
+  std::vector<float> image;
+  std::ostringstream passes;
+  passes << std::fixed << std::setprecision(1);
+  if (opts.device == "emu") {
+    GbufferStats gs;
+    t0 = Clock::now();
+    GBuffer g = gbufferEmu(scene, dev, &gs);
+    const double tGbuf = ms(t0);
+    t0 = Clock::now();
+    image = shadeEmu(scene, g, *env.texture, dev);
+    const double tShade = ms(t0);
+    passes << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
+           << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
+           << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
+    passes << "  shading (emu, " << scene.technique << ")    " << std::setw(8) << tShade << " ms\n";
+  } else {
+    t0 = Clock::now();
+    vk::Context ctx;
+    GbufferPassVk gpass(ctx, scene);
+    ShadePassVk spass(ctx, scene, *env.texture);
+    const double tSetup = ms(t0);
+    GBuffer g = gpass.run();
+    image = spass.run(g);
+    passes << "  Vulkan set-up (" << ctx.deviceName() << ")  " << std::setw(8) << tSetup << " ms\n";
+    passes << "  G-buffer (vulkan)        " << std::setw(8) << gpass.lastMs << " ms  (submit to read-back)\n";
+    passes << "  shading (vulkan, " << scene.technique << ") " << std::setw(8) << spass.lastMs << " ms  (submit to read-back)\n";
+  }
+  // Passes the technique does not use are not run.
+  passes << "  shadow maps              " << std::setw(8) << "-" << "     (not run: technique " << scene.technique
+         << " uses no visibility)\n";
   std::string out = opts.out;
   if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + ".exr";
   std::string png = std::filesystem::path(out).replace_extension(".png").string();
@@ -88,10 +114,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   log << "  load scene + meshes      " << std::setw(8) << tScene << " ms\n";
   log << "  environment + MIP chain  " << std::setw(8) << tEnv << " ms  (" << env.width << "x" << env.height << ", "
       << env.texture->levelCount() << " levels, " << env.negative << " negative texel values)\n";
-  log << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
-      << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
-      << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
-  log << "  shading (emu, mirror)    " << std::setw(8) << tShade << " ms\n";
+  log << passes.str();
   log << "  write EXR + PNG          " << std::setw(8) << tWrite << " ms\n";
   log << "wrote " << out << " and " << png << "\n";
   return 0;

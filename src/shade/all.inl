@@ -5,4 +5,5 @@
 #include "shade/verify_kernels.h"
 #include "shade/mip.h"
 #include "shade/gbuffer.h"
+#include "shade/shadow.h"
 #include "shade/shade_mirror.h"

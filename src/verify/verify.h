@@ -1,8 +1,10 @@
 // `shadetwin verify ...`: differential tests of the emulator and the C++ builds against a Vulkan device.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace shadetwin {
 
@@ -15,8 +17,11 @@ struct VerifyOptions {
   std::string filters;        // texture: comma-separated filter cases to run (empty = all)
   std::string stages;         // texture: "compute", "fragment" or both (empty = both)
   std::string image;          // texture: sample this image file (MIP chain from the shared kernel) instead of random textures
-  std::string scene;          // raster: scene file
-  uint32_t width = 0, height = 0;  // raster: override the scene's image size
+  std::string scene;          // raster/shadow/shade/frame: scene file
+  uint32_t width = 0, height = 0;  // raster/shade/frame: override the scene's image size
+  uint32_t directions = 16;   // shadow: number of directions (spherical Fibonacci)
+  uint32_t shadowSize = 512;  // shadow: map resolution
+  std::string technique;      // shade/frame: shading technique (default: the scene's)
 };
 
 /// Returns the process exit status: 0 when everything is bit-identical, 1 otherwise.
@@ -25,6 +30,23 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out);
 int verifyMips(const VerifyOptions& opts, std::ostream& out);
 /// G-buffer pass, emulator vs Vulkan build: coverage, depth and every G-buffer channel, bit for bit.
 int verifyRaster(const VerifyOptions& opts, std::ostream& out);
+
+/// Shadow-map passes, emulator vs Vulkan build: every depth value of every direction.
+int verifyShadow(const VerifyOptions& opts, std::ostream& out);
+/// Shading pass of both builds on the same G-buffer (the Vulkan build's, read back): every channel.
+int verifyShade(const VerifyOptions& opts, std::ostream& out);
+/// Whole frames: emulator (G-buffer + shading) vs Vulkan build (G-buffer + shading).
+int verifyFrame(const VerifyOptions& opts, std::ostream& out);
+
+/// Per-channel tally of a bit-for-bit comparison: identical/total and a ULP histogram of what differs.
+struct UlpTally {
+  std::string name;
+  size_t identical = 0, total = 0;
+  std::array<size_t, 5> hist{};  // ULP 1, 2-3, 4-15, 16-255, >= 256 (or NaN vs number)
+  void add(float a, float b);
+};
+/// Prints one row per tally and returns {identical, total} summed over all of them.
+std::array<size_t, 2> printTallies(const std::vector<UlpTally>& t, std::ostream& out);
 
 /// Distance in units in the last place between two floats (NaN vs NaN = 0, NaN vs number = huge).
 int64_t ulpDistance(float a, float b);

@@ -5,30 +5,36 @@
 #include <iomanip>
 
 #include "emu/device_profile.h"
-#include "render/gbuffer.h"
+#include "render/passes_vk.h"
 #include "scene/scene.h"
 #include "verify/verify.h"
 #include "vk/context.h"
 
 namespace shadetwin {
-namespace {
-
-struct Tally {
-  std::string name;
-  size_t identical = 0, total = 0;
-  std::array<size_t, 5> hist{};  // ULP 1, 2-3, 4-15, 16-255, >= 256 (or NaN vs number)
-  void add(float a, float b) {
-    ++total;
-    if (sameBits(a, b)) {
-      ++identical;
-      return;
-    }
-    int64_t u = ulpDistance(a, b);
-    hist[u <= 1 ? 0 : u <= 3 ? 1 : u <= 15 ? 2 : u <= 255 ? 3 : 4]++;
+void UlpTally::add(float a, float b) {
+  ++total;
+  if (sameBits(a, b)) {
+    ++identical;
+    return;
   }
-};
+  int64_t u = ulpDistance(a, b);
+  hist[u <= 1 ? 0 : u <= 3 ? 1 : u <= 15 ? 2 : u <= 255 ? 3 : 4]++;
+}
 
-}  // namespace
+std::array<size_t, 2> printTallies(const std::vector<UlpTally>& t, std::ostream& out) {
+  out << std::left << std::setw(20) << "channel" << std::setw(22) << "identical/total"
+      << "differing by ULP: 1 | 2-3 | 4-15 | 16-255 | >=256\n";
+  size_t I = 0, T = 0;
+  for (auto& x : t) {
+    std::string it = std::to_string(x.identical) + "/" + std::to_string(x.total);
+    out << std::setw(20) << x.name << std::setw(22) << it;
+    for (size_t h : x.hist) out << h << " ";
+    out << "\n";
+    I += x.identical;
+    T += x.total;
+  }
+  return {I, T};
+}
 
 int verifyRaster(const VerifyOptions& opts, std::ostream& out) {
   Scene scene = loadScene(opts.scene);
@@ -47,7 +53,7 @@ int verifyRaster(const VerifyOptions& opts, std::ostream& out) {
   if (st.raster.trianglesClipped)
     out << "note: " << st.raster.trianglesClipped
         << " triangles cross the near/far planes; the emulator's clipper is not yet a model of the device's\n";
-  std::vector<Tally> t;
+  std::vector<UlpTally> t;
   t.push_back({"coverage"});
   t.push_back({"depth"});
   const char* names[4] = {"G0 position+id", "G1 normal+u", "G2 tangent+v", "G3 uv derivs"};
@@ -61,17 +67,7 @@ int verifyRaster(const VerifyOptions& opts, std::ostream& out) {
     t[1].add(e.depth[p], g.depth[p]);
     for (int k = 0; k < kGbufFloats; ++k) t[size_t(2 + k)].add(e.texels[p * kGbufFloats + size_t(k)], g.texels[p * kGbufFloats + size_t(k)]);
   }
-  out << std::left << std::setw(20) << "attachment" << std::setw(22) << "identical/total"
-      << "differing by ULP: 1 | 2-3 | 4-15 | 16-255 | >=256\n";
-  size_t I = 0, T = 0;
-  for (auto& x : t) {
-    std::string it = std::to_string(x.identical) + "/" + std::to_string(x.total);
-    out << std::setw(20) << x.name << std::setw(22) << it;
-    for (size_t h : x.hist) out << h << " ";
-    out << "\n";
-    I += x.identical;
-    T += x.total;
-  }
+  const auto [I, T] = printTallies(t, out);
   if (opts.validate && ctx.validationErrors()) {
     out << "validation errors: " << ctx.validationErrors() << " (last: " << ctx.lastValidationMessage << ")\n";
     return 1;

@@ -217,7 +217,7 @@ Buffer::~Buffer() {
 // ---------------------------------------------------------------------------------------------
 
 Image::Image(Context& ctx, VkFormat format, uint32_t width, uint32_t height, uint32_t layers,
-             const std::vector<std::vector<uint8_t>>& levels, uint32_t texelBytes)
+             const std::vector<std::vector<uint8_t>>& levels, uint32_t texelBytes, VkImageViewType viewType)
     : ctx_(ctx) {
   const uint32_t nLevels = uint32_t(levels.size());
   VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -274,7 +274,7 @@ Image::Image(Context& ctx, VkFormat format, uint32_t width, uint32_t height, uin
   });
   VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vi.image = image_;
-  vi.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  vi.viewType = viewType;
   vi.format = format;
   vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, nLevels, 0, layers};
   check(vkCreateImageView(ctx.device(), &vi, nullptr, &view_), "vkCreateImageView");

@@ -87,8 +87,10 @@ class Buffer {
 class Image {
  public:
   /// `levels[l]` holds layers * w_l * h_l texels of `texelBytes` each, w_l = max(1, w >> l).
+  /// `viewType`: 2D_ARRAY (sampler2DArray) or, for one layer, 2D (sampler2D).
   Image(Context& ctx, VkFormat format, uint32_t width, uint32_t height, uint32_t layers,
-        const std::vector<std::vector<uint8_t>>& levels, uint32_t texelBytes);
+        const std::vector<std::vector<uint8_t>>& levels, uint32_t texelBytes,
+        VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY);
   ~Image();
   Image(const Image&) = delete;
   Image& operator=(const Image&) = delete;

@@ -1,0 +1,70 @@
+// The deferred pipeline's passes on a Vulkan device, each built once (pipelines, targets, buffers)
+// and run many times: the G-buffer pass, the shadow-map passes and the shading pass. Each run()
+// records, submits, waits, reads back, and records the wall time of the submission in lastMs.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "render/gbuffer.h"
+#include "render/shadow.h"
+#include "vk/context.h"
+#include "vk/graphics_pass.h"
+
+namespace shadetwin {
+
+/// The scene's geometry and per-object data in device buffers.
+struct SceneGpu {
+  SceneGpu(vk::Context& ctx, const Scene& scene);
+  std::vector<std::unique_ptr<vk::Buffer>> vertices, indices;  // per mesh
+  std::unique_ptr<vk::Buffer> objects;                         // ObjectGpu per object
+};
+
+class GbufferPassVk {
+ public:
+  GbufferPassVk(vk::Context& ctx, const Scene& scene);
+  GBuffer run();
+  double lastMs = 0;
+
+ private:
+  vk::Context& ctx_;
+  const Scene& scene_;
+  SceneGpu gpu_;
+  vk::Buffer frame_;
+  vk::GraphicsPass pass_;
+  std::vector<std::unique_ptr<vk::Buffer>> readback_;
+};
+
+class ShadowPassVk {
+ public:
+  ShadowPassVk(vk::Context& ctx, const Scene& scene, uint32_t size);
+  ShadowMaps run(const std::vector<Vec3>& directions);
+  double lastMs = 0;
+
+ private:
+  vk::Context& ctx_;
+  const Scene& scene_;
+  uint32_t size_;
+  SceneGpu gpu_;
+  vk::GraphicsPass pass_;
+  std::unique_ptr<vk::Buffer> readback_;
+};
+
+/// The shading pass as a compute shader (src/shaders/shade_mirror.comp, the shared shade_mirror.h),
+/// one invocation per pixel in row-major order, local size 64, over a G-buffer uploaded from the host.
+class ShadePassVk {
+ public:
+  /// env: the environment with its MIP chain, as the emulator samples it (same sampler state).
+  ShadePassVk(vk::Context& ctx, const Scene& scene, const emu::Texture& env);
+  ~ShadePassVk();
+  std::vector<float> run(const GBuffer& g);
+  double lastMs = 0;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Convenience: the G-buffer pass built, run once and torn down.
+GBuffer gbufferVulkan(vk::Context& ctx, const Scene& scene);
+
+}  // namespace shadetwin
