@@ -5,6 +5,8 @@
 #include <string>
 #include <iostream>
 
+#include "compare.h"
+#include "reference/reference.h"
 #include "render/render.h"
 #include "scene/scene.h"
 #include "verify/verify.h"
@@ -52,6 +54,19 @@ int main(int argc, char** argv) {
   render->add_option("--width", ro.width, "override the scene's image width")->check(CLI::Range(1, 16384));
   render->add_option("--height", ro.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   render->add_option("--profile", ro.profile, "device profile the emulator follows (lavapipe, nvidia)");
+  shadetwin::ReferenceCommandOptions refo;
+  auto* ref = app.add_subcommand("reference", "ground truth: Embree + TBB Monte Carlo with MIS, written as EXR + PNG");
+  ref->add_option("scene", refo.scene, "scene file (JSON, see README)");
+  ref->add_option("--spp", refo.render.spp, "samples per pixel (each: one environment and one BRDF direction)")->check(CLI::Range(1, 1 << 24));
+  ref->add_option("--seed", refo.render.seed, "random seed");
+  ref->add_flag("--visibility", refo.render.visibility, "trace an occlusion ray for every direction");
+  ref->add_option("--out", refo.out, "output EXR; default <scene>_ref.exr");
+  ref->add_option("--width", refo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+  ref->add_option("--height", refo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  std::string cmpA, cmpB;
+  auto* cmp = app.add_subcommand("compare", "error metrics of image A against reference B: RMSE, relMSE, PSNR");
+  cmp->add_option("A", cmpA, "image")->required();
+  cmp->add_option("B", cmpB, "reference image")->required();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -63,6 +78,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (app.got_subcommand("render")) return shadetwin::renderCommand(ro, std::cout);
+    if (app.got_subcommand("reference")) return shadetwin::referenceCommand(refo, std::cout);
+    if (app.got_subcommand("compare")) return shadetwin::compareCommand(cmpA, cmpB, std::cout);
     if (verify->got_subcommand("math")) return shadetwin::verifyMath(vo, std::cout);
     if (verify->got_subcommand("texture")) return shadetwin::verifyTexture(vo, std::cout);
     if (verify->got_subcommand("raster")) return shadetwin::verifyRaster(vo, std::cout);

@@ -1,0 +1,367 @@
+#include "reference/reference.h"
+
+#include <embree3/rtcore.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <mutex>
+#include <numbers>
+#include <stdexcept>
+
+#include "image_io.h"
+#include "reference/reference_brdf.h"
+#include "render/gbuffer.h"
+#include "render/render.h"
+#include "util/progress.h"
+
+namespace shadetwin {
+namespace {
+
+using reference::D3;
+using reference::RefBrdf;
+constexpr double kPi = std::numbers::pi;
+
+/// Counter-based random numbers: splitmix64 of (seed, pixel, sample, dimension).
+struct Rng {
+  uint64_t state;
+  static uint64_t mix(uint64_t z) {
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  }
+  Rng(uint64_t seed, uint64_t pixel, uint64_t sample) : state(mix(mix(mix(seed) ^ pixel) ^ sample)) {}
+  double next() {
+    state = mix(state);
+    return double(state >> 11) * 0x1.0p-53;
+  }
+};
+
+/// The environment as a radiance function and as a sampling distribution.
+class Environment {
+ public:
+  Environment(const EnvImage& img, double intensity) : img_(img), intensity_(intensity) {
+    const uint32_t W = img.width, H = img.height;
+    if (!W || !H || !img.rgba) throw std::invalid_argument("reference: empty environment image");
+    // Texel weights: luminance (negative texels count as 0) x sin(theta) of the row centre, plus a
+    // floor of 1e-4 of the mean so every direction keeps a positive pdf (the radiance is bilinear,
+    // so a zero texel can border a bright one).
+    cdfRow_.resize(H + 1);
+    cdfCol_.resize(size_t(H) * (W + 1));
+    std::vector<double> w(size_t(W) * H);
+    double total = 0;
+    for (uint32_t y = 0; y < H; ++y) {
+      const double s = std::sin(kPi * (y + 0.5) / H);
+      for (uint32_t x = 0; x < W; ++x) {
+        const float* t = img.rgba + 4 * (size_t(y) * W + x);
+        const double lum = std::max(0.0, 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]);
+        w[size_t(y) * W + x] = std::isfinite(lum) ? lum * s : 0.0;
+        total += w[size_t(y) * W + x];
+      }
+    }
+    const double floor = total > 0 ? 1e-4 * total / (double(W) * H) : 1.0;
+    cdfRow_[0] = 0;
+    for (uint32_t y = 0; y < H; ++y) {
+      double* c = &cdfCol_[size_t(y) * (W + 1)];
+      c[0] = 0;
+      for (uint32_t x = 0; x < W; ++x) c[x + 1] = c[x] + w[size_t(y) * W + x] + floor * std::sin(kPi * (y + 0.5) / H);
+      cdfRow_[y + 1] = cdfRow_[y] + c[W];
+    }
+    sum_ = cdfRow_[H];
+  }
+
+  /// Bilinear radiance (repeat in u, clamp in v), RGB, times the intensity.
+  void radiance(D3 d, double out[3]) const {
+    double u, v;
+    uvOf(d, u, v);
+    const int W = int(img_.width), H = int(img_.height);
+    const double x = u * W - 0.5, y = v * H - 0.5;
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const double fx = x - x0, fy = y - y0;
+    out[0] = out[1] = out[2] = 0;
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const int xi = ((x0 + i) % W + W) % W, yi = std::clamp(y0 + j, 0, H - 1);
+        const double wgt = (i ? fx : 1 - fx) * (j ? fy : 1 - fy);
+        const float* t = img_.rgba + 4 * (size_t(yi) * size_t(W) + size_t(xi));
+        for (int k = 0; k < 3; ++k) out[k] += wgt * t[k];
+      }
+    for (int k = 0; k < 3; ++k) out[k] *= intensity_;
+  }
+
+  /// Texel by inversion (marginal rows, conditional columns), uniform inside it in (u, v).
+  D3 sample(double u0, double u1, double u2, double u3) const {
+    const uint32_t W = img_.width, H = img_.height;
+    const double tr = u0 * sum_;
+    uint32_t y = uint32_t(std::upper_bound(cdfRow_.begin(), cdfRow_.end(), tr) - cdfRow_.begin()) - 1;
+    y = std::min(y, H - 1);
+    const double* c = &cdfCol_[size_t(y) * (W + 1)];
+    const double tc = u1 * c[W];
+    uint32_t x = uint32_t(std::upper_bound(c, c + W + 1, tc) - c) - 1;
+    x = std::min(x, W - 1);
+    return dirOf((x + u2) / W, (y + u3) / H);
+  }
+
+  /// Solid-angle pdf of sample(): p_texel * W * H / (2 pi^2 sin(theta)).
+  double pdf(D3 d) const {
+    double u, v;
+    uvOf(d, u, v);
+    const uint32_t W = img_.width, H = img_.height;
+    const uint32_t x = std::min(W - 1, uint32_t(u * W)), y = std::min(H - 1, uint32_t(v * H));
+    const double* c = &cdfCol_[size_t(y) * (W + 1)];
+    const double p = (c[x + 1] - c[x]) / sum_;
+    const double s = std::sin(kPi * v);
+    return s > 0 ? p * W * H / (2 * kPi * kPi * s) : 0.0;
+  }
+
+  // Same mapping as shade/shade_mirror.h equirectUv: u from the azimuth about +y (u = 1/2 looks
+  // down -z), v = polar angle / pi.
+  static void uvOf(D3 d, double& u, double& v) {
+    u = std::atan2(d.x, -d.z) / (2 * kPi) + 0.5;
+    v = std::acos(std::clamp(d.y, -1.0, 1.0)) / kPi;
+    u = u - std::floor(u);
+  }
+  static D3 dirOf(double u, double v) {
+    const double phi = (u - 0.5) * 2 * kPi, theta = v * kPi;
+    return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
+  }
+
+ private:
+  EnvImage img_;
+  double intensity_;
+  std::vector<double> cdfRow_, cdfCol_;
+  double sum_ = 0;
+};
+
+RefBrdf refBrdf(const Material& m) {
+  RefBrdf b;
+  for (int k = 0; k < 3; ++k) b.kd[k] = m.diffuse[size_t(k)], b.ks[k] = m.specular[size_t(k)];
+  b.exponent = m.exponent;
+  b.ax = m.roughness;
+  b.ay = m.brdf == "ward" ? m.roughnessY : m.roughness;
+  if (m.brdf == "phong") b.lobe = reference::Lobe::Phong;
+  else if (m.brdf == "blinn") b.lobe = reference::Lobe::Blinn;
+  else if (m.brdf == "ggx") b.lobe = reference::Lobe::Ggx;
+  else if (m.brdf == "ward") b.lobe = reference::Lobe::Ward;
+  else if (m.brdf == "mirror") b.lobe = reference::Lobe::Mirror;
+  else throw std::invalid_argument("reference: material '" + m.name + "': BRDF '" + m.brdf + "' has no reference implementation yet");
+  return b;
+}
+
+struct World {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  // Per geometry (= object): world-space normals and tangents per vertex, and its indices.
+  struct Geo {
+    std::vector<D3> n, t;
+    std::vector<double> handed;
+    const std::vector<uint32_t>* idx = nullptr;
+    uint32_t material = 0;
+  };
+  std::vector<Geo> geos;
+  explicit World(const Scene& s) {
+    device = rtcNewDevice(nullptr);
+    if (!device) throw std::runtime_error("reference: rtcNewDevice failed");
+    scene = rtcNewScene(device);
+    for (const Object& o : s.objects) {
+      const Mesh& m = s.meshes[o.mesh];
+      const Mat4 nm = normalMatrix(o.model);
+      RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      float* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                              3 * sizeof(float), m.positions.size()));
+      uint32_t* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                    3 * sizeof(uint32_t), m.triangles()));
+      Geo geo;
+      geo.idx = &m.indices;
+      geo.material = o.material;
+      for (size_t i = 0; i < m.positions.size(); ++i) {
+        const auto& p = m.positions[i];
+        for (int k = 0; k < 3; ++k)
+          vb[3 * i + size_t(k)] = float(double(o.model[size_t(k)]) * p[0] + double(o.model[size_t(4 + k)]) * p[1] +
+                                        double(o.model[size_t(8 + k)]) * p[2] + double(o.model[size_t(12 + k)]));
+        auto xf = [&](const Mat4& M, double x, double y, double z) {
+          return D3{M[0] * x + M[4] * y + M[8] * z, M[1] * x + M[5] * y + M[9] * z, M[2] * x + M[6] * y + M[10] * z};
+        };
+        const auto& nn = m.normals[i];
+        const auto& tt = m.tangents[i];
+        geo.n.push_back(xf(nm, nn[0], nn[1], nn[2]));
+        geo.t.push_back(xf(o.model, tt[0], tt[1], tt[2]));
+        geo.handed.push_back(tt[3]);
+      }
+      std::copy(m.indices.begin(), m.indices.end(), ib);
+      rtcCommitGeometry(g);
+      rtcAttachGeometry(scene, g);
+      rtcReleaseGeometry(g);
+      geos.push_back(std::move(geo));
+    }
+    rtcCommitScene(scene);
+  }
+  ~World() {
+    rtcReleaseScene(scene);
+    rtcReleaseDevice(device);
+  }
+  bool occluded(D3 o, D3 d) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r{};
+    r.org_x = float(o.x), r.org_y = float(o.y), r.org_z = float(o.z);
+    r.dir_x = float(d.x), r.dir_y = float(d.y), r.dir_z = float(d.z);
+    r.tnear = 0.0f;
+    r.tfar = std::numeric_limits<float>::infinity();
+    r.mask = 0xffffffffu;
+    rtcOccluded1(scene, &ctx, &r);
+    return r.tfar < 0.0f;
+  }
+};
+
+}  // namespace
+
+std::vector<float> renderReference(const Scene& scene, const EnvImage& envImg, const ReferenceOptions& opts) {
+  std::vector<RefBrdf> brdfs;
+  for (const Material& m : scene.materials) brdfs.push_back(refBrdf(m));
+  const Environment env(envImg, scene.environmentIntensity);
+  const World world(scene);
+  const CameraRays cam = cameraRays(scene);
+  const uint32_t W = scene.width, H = scene.height;
+  std::vector<float> out(size_t(W) * H * 4, 0.0f);
+  std::atomic<uint32_t> rowsDone{0};
+  std::mutex progressMutex;
+  tbb::parallel_for(uint32_t(0), H, [&](uint32_t y) {
+    for (uint32_t x = 0; x < W; ++x) {
+      const double nx = (x + 0.5) / W * 2 - 1, ny = (y + 0.5) / H * 2 - 1;
+      D3 d{cam.fwd[0] + cam.right[0] * nx + cam.down[0] * ny, cam.fwd[1] + cam.right[1] * nx + cam.down[1] * ny,
+           cam.fwd[2] + cam.right[2] * nx + cam.down[2] * ny};
+      d = reference::normalize(d);
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      RTCRayHit rh{};
+      rh.ray.org_x = cam.eye[0], rh.ray.org_y = cam.eye[1], rh.ray.org_z = cam.eye[2];
+      rh.ray.dir_x = float(d.x), rh.ray.dir_y = float(d.y), rh.ray.dir_z = float(d.z);
+      rh.ray.tnear = 0.0f;
+      rh.ray.tfar = std::numeric_limits<float>::infinity();
+      rh.ray.mask = 0xffffffffu;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(world.scene, &ctx, &rh);
+      float* px = &out[4 * (size_t(y) * W + x)];
+      px[3] = 1.0f;
+      double L[3];
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        env.radiance(d, L);
+        for (int k = 0; k < 3; ++k) px[k] = float(L[k]);
+        continue;
+      }
+      const World::Geo& g = world.geos[rh.hit.geomID];
+      const RefBrdf& brdf = brdfs[std::min<size_t>(g.material, brdfs.size() - 1)];
+      const uint32_t* tri = &(*g.idx)[3 * size_t(rh.hit.primID)];
+      const double b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
+      D3 n = reference::normalize(g.n[tri[0]] * b0 + g.n[tri[1]] * b1 + g.n[tri[2]] * b2);
+      D3 ng = reference::normalize(D3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
+      const D3 wo = d * -1.0;
+      if (reference::dot(n, wo) < 0) n = n * -1.0;  // seen from behind: shade the side facing the camera
+      if (reference::dot(ng, wo) < 0) ng = ng * -1.0;
+      D3 t = g.t[tri[0]] * b0 + g.t[tri[1]] * b1 + g.t[tri[2]] * b2;
+      t = t - n * reference::dot(n, t);
+      if (reference::dot(t, t) < 1e-20) {  // degenerate tangent: any frame about n
+        D3 unused;
+        RefBrdf::frame(n, t, unused);
+      }
+      t = reference::normalize(t);
+      const D3 bt = reference::cross(n, t);
+      auto toLocal = [&](D3 v) { return D3{reference::dot(v, t), reference::dot(v, bt), reference::dot(v, n)}; };
+      auto toWorld = [&](D3 v) { return t * v.x + bt * v.y + n * v.z; };
+      const D3 p{rh.ray.org_x + rh.ray.tfar * rh.ray.dir_x, rh.ray.org_y + rh.ray.tfar * rh.ray.dir_y,
+                 rh.ray.org_z + rh.ray.tfar * rh.ray.dir_z};
+      const D3 origin = p + ng * 1e-4;
+      const D3 woL = toLocal(wo);
+      auto visible = [&](D3 wiW) { return !opts.visibility || !world.occluded(origin, wiW); };
+      auto fCos = [&](D3 wiL, double f[3]) {
+        const double gl = brdf.glossy(wiL, woL), c = std::max(0.0, wiL.z);
+        for (int k = 0; k < 3; ++k) f[k] = (brdf.kd[k] / kPi + brdf.ks[k] * gl) * c;
+      };
+      double sum[3] = {0, 0, 0};
+      for (uint32_t s = 0; s < opts.spp; ++s) {
+        Rng rng(opts.seed, size_t(y) * W + x, s);
+        double f[3];
+        // Environment sample, balance heuristic against the BRDF mixture.
+        {
+          const D3 wiW = env.sample(rng.next(), rng.next(), rng.next(), rng.next());
+          const D3 wiL = toLocal(wiW);
+          const double pe = env.pdf(wiW), pb = brdf.pdf(wiL, woL);
+          if (wiL.z > 0 && pe > 0 && visible(wiW)) {
+            fCos(wiL, f);
+            env.radiance(wiW, L);
+            const double w = pe / (pe + pb);
+            for (int k = 0; k < 3; ++k) sum[k] += f[k] * L[k] * w / pe;
+          }
+        }
+        // BRDF sample.
+        {
+          const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+          const D3 wiL = brdf.sample(woL, u0, u1, u2);
+          const D3 wiW = toWorld(wiL);
+          const double pb = brdf.pdf(wiL, woL), pe = env.pdf(wiW);
+          if (wiL.z > 0 && pb > 0 && visible(wiW)) {
+            fCos(wiL, f);
+            env.radiance(wiW, L);
+            const double w = pb / (pe + pb);
+            for (int k = 0; k < 3; ++k) sum[k] += f[k] * L[k] * w / pb;
+          }
+        }
+      }
+      for (int k = 0; k < 3; ++k) sum[k] /= opts.spp;
+      if (brdf.lobe == reference::Lobe::Mirror) {  // delta lobe: ks * L(reflect(wo))
+        const D3 r = n * (2 * reference::dot(n, wo)) - wo;
+        if (visible(r)) {
+          env.radiance(r, L);
+          for (int k = 0; k < 3; ++k) sum[k] += brdf.ks[k] * L[k];
+        }
+      }
+      for (int k = 0; k < 3; ++k) px[k] = float(sum[k]);
+    }
+    const uint32_t done = ++rowsDone;
+    if (opts.progress) {
+      std::lock_guard<std::mutex> lock(progressMutex);
+      opts.progress(double(done) / H);
+    }
+  });
+  return out;
+}
+
+int referenceCommand(const ReferenceCommandOptions& opts, std::ostream& log) {
+  Scene scene = loadScene(opts.scene);
+  if (opts.width) scene.width = opts.width;
+  if (opts.height) scene.height = opts.height;
+  ImageRGBA img = loadImageRGBA(scene.environment);
+  size_t nonFinite = 0;
+  for (float& v : img.texels)
+    if (!std::isfinite(v)) v = 0.0f, ++nonFinite;  // same policy as the renderer (render.cpp loadEnvironment)
+  log << "reference " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << opts.render.spp
+      << " spp (x2 directions, MIS), visibility " << (opts.render.visibility ? "on" : "off") << ", seed " << opts.render.seed
+      << "\n";
+  if (nonFinite) log << "  environment: " << nonFinite << " non-finite texel values replaced by 0\n";
+  ProgressBar bar(std::cerr, "reference");
+  ReferenceOptions ro = opts.render;
+  ro.progress = [&](double f) { bar.update(f); };
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<float> image = renderReference(scene, EnvImage{img.width, img.height, img.texels.data()}, ro);
+  bar.finish();
+  const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::string out = opts.out;
+  if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + "_ref.exr";
+  const std::string png = std::filesystem::path(out).replace_extension(".png").string();
+  writeExr(out, scene.width, scene.height, image);
+  writePngToneMapped(png, scene.width, scene.height, image);
+  log << std::fixed << std::setprecision(2) << "  rendered in " << sec << " s ("
+      << double(scene.width) * scene.height * opts.render.spp * 2 / sec / 1e6 << " M directions/s)\n";
+  log << "wrote " << out << " and " << png << "\n";
+  return 0;
+}
+
+}  // namespace shadetwin
