@@ -5,14 +5,25 @@
 #include <cmath>
 #include <cstring>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "emu/fpenv.h"
 
 namespace emu {
 
-Framebuffer::Framebuffer(uint32_t w, uint32_t h, int outputs, float clearDepth)
-    : width(w), height(h), numOutputs(outputs), depth(size_t(w) * h, clearDepth), color(size_t(w) * h * size_t(outputs), 0.0f) {}
+Framebuffer::Framebuffer(uint32_t w, uint32_t h, int outputs, float clearDepth) { reset(w, h, outputs, clearDepth); }
+
+void Framebuffer::reset(uint32_t w, uint32_t h, int outputs, float clearDepth) {
+  width = w, height = h, numOutputs = outputs;
+  const size_t n = size_t(w) * h, per = size_t(outputs);
+  depth.resize(n);
+  color.resize(n * per);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384), [&](const tbb::blocked_range<size_t>& r) {
+    std::fill(depth.begin() + std::ptrdiff_t(r.begin()), depth.begin() + std::ptrdiff_t(r.end()), clearDepth);
+    std::fill(color.begin() + std::ptrdiff_t(r.begin() * per), color.begin() + std::ptrdiff_t(r.end() * per), 0.0f);
+  });
+}
 
 void quadDerivatives(const DeviceProfile& dev, const float v[4], float ddx[4], float ddy[4]) {
   if (dev.raster.fineDerivatives) {

@@ -58,7 +58,12 @@ struct Framebuffer {
   int numOutputs = 0;          // floats per pixel in `color`
   std::vector<float> depth;    // D32F, cleared to 1
   std::vector<float> color;    // numOutputs floats per pixel, pixel-major
+  Framebuffer() = default;
   Framebuffer(uint32_t w, uint32_t h, int outputs, float clearDepth = 1.0f);
+  /// Resizes (reusing the storage when it is large enough) and clears: depth to clearDepth, color
+  /// to 0, in parallel. Passes that run every frame keep their framebuffer and reset it, as a GPU
+  /// keeps its attachments and clears them.
+  void reset(uint32_t w, uint32_t h, int outputs, float clearDepth = 1.0f);
 };
 
 struct RasterStats {

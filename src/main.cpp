@@ -7,6 +7,7 @@
 
 #include "compare.h"
 #include "reference/reference.h"
+#include "render/bench.h"
 #include "render/render.h"
 #include "scene/scene.h"
 #include "verify/verify.h"
@@ -67,6 +68,16 @@ int main(int argc, char** argv) {
   auto* cmp = app.add_subcommand("compare", "error metrics of image A against reference B: RMSE, relMSE, PSNR");
   cmp->add_option("A", cmpA, "image")->required();
   cmp->add_option("B", cmpB, "reference image")->required();
+  shadetwin::BenchOptions bo;
+  auto* bench = app.add_subcommand("bench", "time passes on the emulator and on a Vulkan device in one run; last line: ratio emu/vulkan");
+  bench->add_option("--scene", bo.scene, "scene file");
+  bench->add_option("--passes", bo.passes, "comma-separated passes: gbuffer, shadow, shade");
+  bench->add_option("--width", bo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+  bench->add_option("--height", bo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  bench->add_option("--repeat", bo.repeat, "timed runs per pass (median reported)")->check(CLI::Range(1, 1000));
+  bench->add_option("--directions", bo.directions, "shadow-map directions")->check(CLI::Range(1, 4096));
+  bench->add_option("--shadow-size", bo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
+  bench->add_option("--device", bo.device, "Vulkan device (substring of its name; default lavapipe)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -78,6 +89,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (app.got_subcommand("render")) return shadetwin::renderCommand(ro, std::cout);
+    if (app.got_subcommand("bench")) return shadetwin::benchCommand(bo, std::cout);
     if (app.got_subcommand("reference")) return shadetwin::referenceCommand(refo, std::cout);
     if (app.got_subcommand("compare")) return shadetwin::compareCommand(cmpA, cmpB, std::cout);
     if (verify->got_subcommand("math")) return shadetwin::verifyMath(vo, std::cout);

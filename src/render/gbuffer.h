@@ -46,7 +46,9 @@ struct GbufferStats {
   double vertexMs = 0, rasterMs = 0;
 };
 
-/// Emulated G-buffer pass (every object one draw, in scene order).
+/// Emulated G-buffer pass (every object one draw, in scene order) into `target`, whose storage is
+/// reused when it is large enough (cleared like a GPU's attachments).
+void gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& target, GbufferStats* stats = nullptr);
 GBuffer gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GbufferStats* stats = nullptr);
 
 /// Camera basis for primary rays (shade/shade_mirror.h cameraRay), from the scene on the host.
@@ -58,5 +60,8 @@ CameraRays cameraRays(const Scene& scene);
 /// Emulated deferred shading pass (technique "mirror"): compute stage, 8 lanes per device vector
 /// (SIMD build of shade/shade_mirror.h), TBB over blocks. Returns RGBA floats per pixel.
 std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev);
+/// Same, into `out` (resized to 4 floats per pixel, storage reused).
+void shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev,
+              std::vector<float>& out);
 
 }  // namespace shadetwin

@@ -44,7 +44,16 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 GBuffer gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GbufferStats* stats) {
-  emu::Framebuffer fb(scene.width, scene.height, kGbufFloats);
+  GBuffer g;
+  gbufferEmu(scene, dev, g, stats);
+  return g;
+}
+
+void gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& g, GbufferStats* stats) {
+  emu::Framebuffer fb;
+  fb.color.swap(g.texels);
+  fb.depth.swap(g.depth);
+  fb.reset(scene.width, scene.height, kGbufFloats);
   const Mat4 vp = scene.viewProjection();
   GbufferStats local;
   for (uint32_t oi = 0; oi < scene.objects.size(); ++oi) {
@@ -102,20 +111,25 @@ GBuffer gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GbufferSta
     local.rasterMs += msSince(t0);
   }
   if (stats) *stats = local;
-  GBuffer g;
   g.width = scene.width;
   g.height = scene.height;
-  g.texels = std::move(fb.color);
-  g.depth = std::move(fb.depth);
-  return g;
+  g.texels.swap(fb.color);
+  g.depth.swap(fb.depth);
 }
 
 std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev) {
+  std::vector<float> out;
+  shadeEmu(scene, g, env, dev, out);
+  return out;
+}
+
+void shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev,
+              std::vector<float>& out) {
   using F = emu::F32<8>;
   using V3 = shade::V3<F>;
   using V4 = shade::V4<F>;
   const size_t n = size_t(g.width) * g.height;
-  std::vector<float> out(4 * n);
+  out.resize(4 * n);
   const CameraRays cam = cameraRays(scene);
   shade::Sampler2D envS;
   envS.tex = &env;
@@ -154,7 +168,6 @@ std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const emu::Tex
       }
     }
   });
-  return out;
 }
 
 }  // namespace shadetwin

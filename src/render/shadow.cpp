@@ -57,19 +57,28 @@ Mat4 shadowViewProjection(const Scene& scene, const Vec3& dir) {
 
 ShadowMaps shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size,
                      const emu::DeviceProfile& dev, ShadowStats* stats) {
+  ShadowMaps sm;
+  shadowEmu(scene, directions, size, dev, sm, stats);
+  return sm;
+}
+
+void shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size, const emu::DeviceProfile& dev,
+               ShadowMaps& sm, ShadowStats* stats) {
   using V3f = shade::V3<float>;
   using V4f = shade::V4<float>;
   auto col = [](const float* m, int c) { return V4f(m[4 * c], m[4 * c + 1], m[4 * c + 2], m[4 * c + 3]); };
-  ShadowMaps sm;
   sm.size = size;
   sm.directions = directions;
+  sm.viewProj.clear();
   for (const Vec3& d : directions) sm.viewProj.push_back(shadowViewProjection(scene, d));
-  sm.depth.assign(directions.size() * size_t(size) * size, 1.0f);
+  sm.maps.resize(directions.size());
   std::vector<ObjectGpu> objs;
   for (const Object& o : scene.objects) objs.push_back(objectGpu(o));
   std::vector<ShadowStats> per(directions.size());
   tbb::parallel_for(size_t(0), directions.size(), [&](size_t di) {
-    emu::Framebuffer fb(size, size, 0);
+    emu::Framebuffer fb;
+    fb.depth.swap(sm.maps[di]);
+    fb.reset(size, size, 0);
     const float* l = sm.viewProj[di].data();
     ShadowStats& st = per[di];
     for (uint32_t oi = 0; oi < scene.objects.size(); ++oi) {
@@ -95,7 +104,7 @@ ShadowMaps shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, ui
       st.vertexMs += std::chrono::duration<double, std::milli>(t1 - t0).count();
       st.rasterMs += std::chrono::duration<double, std::milli>(t2 - t1).count();
     }
-    std::copy(fb.depth.begin(), fb.depth.end(), sm.depth.begin() + std::ptrdiff_t(di * size_t(size) * size));
+    sm.maps[di].swap(fb.depth);
   });
   if (stats) {
     *stats = {};
@@ -106,7 +115,6 @@ ShadowMaps shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, ui
       stats->raster.fragments += s.raster.fragments;
     }
   }
-  return sm;
 }
 
 }  // namespace shadetwin

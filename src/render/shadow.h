@@ -15,8 +15,8 @@ struct ShadowMaps {
   uint32_t size = 0;              // each map is size x size D32F
   std::vector<Vec3> directions;   // unit vectors pointing from the scene towards the light
   std::vector<Mat4> viewProj;     // world -> light clip space, per direction
-  std::vector<float> depth;       // size * size per direction, rows top to bottom, cleared to 1
-  const float* map(size_t i) const { return depth.data() + i * size_t(size) * size; }
+  std::vector<std::vector<float>> maps;  // per direction: size * size depths, rows top to bottom, cleared to 1
+  const float* map(size_t i) const { return maps[i].data(); }
 };
 
 /// `count` directions spread evenly over the sphere (spherical Fibonacci lattice), deterministic.
@@ -34,7 +34,10 @@ struct ShadowStats {
 
 /// Emulated shadow-map passes: every direction's map, every object one draw, in scene order.
 /// Directions run in parallel (each has its own depth buffer, so bits do not depend on scheduling).
+/// The second form renders into `target`, reusing its maps' storage.
 ShadowMaps shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size,
                      const emu::DeviceProfile& dev, ShadowStats* stats = nullptr);
+void shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size, const emu::DeviceProfile& dev,
+               ShadowMaps& target, ShadowStats* stats = nullptr);
 
 }  // namespace shadetwin

@@ -65,8 +65,11 @@ ShadowMaps ShadowPassVk::run(const std::vector<Vec3>& directions) {
     vk::GraphicsPass::hostBarrier(cmd);
   });
   lastMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  sm.depth.resize(directions.size() * size_t(size_) * size_);
-  std::memcpy(sm.depth.data(), readback_->data(), sm.depth.size() * 4);
+  sm.maps.resize(directions.size());
+  for (size_t di = 0; di < directions.size(); ++di) {
+    sm.maps[di].resize(size_t(size_) * size_);
+    std::memcpy(sm.maps[di].data(), readback_->as<uint8_t>() + di * mapBytes, mapBytes);
+  }
   return sm;
 }
 

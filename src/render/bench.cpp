@@ -1,0 +1,94 @@
+#include "render/bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "emu/device_profile.h"
+#include "render/passes_vk.h"
+#include "render/render.h"
+#include "scene/scene.h"
+#include "vk/context.h"
+
+namespace shadetwin {
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+template <class F> double timeMs(F f) {
+  auto t0 = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+int benchCommand(const BenchOptions& opts, std::ostream& log) {
+  Scene scene = loadScene(opts.scene);
+  if (opts.width) scene.width = opts.width;
+  if (opts.height) scene.height = opts.height;
+  std::vector<std::string> passes;
+  std::stringstream ss(opts.passes);
+  for (std::string p; std::getline(ss, p, ',');) {
+    if (p != "gbuffer" && p != "shadow" && p != "shade") throw std::invalid_argument("--passes: unknown pass '" + p + "' (expected gbuffer, shadow, shade)");
+    passes.push_back(p);
+  }
+  vk::ContextOptions co;
+  co.device = opts.device;
+  vk::Context ctx(co);
+  const emu::DeviceProfile& dev = emu::profileForDevice(ctx.deviceName());
+  log << "bench " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << scene.triangles()
+      << " triangles; shadow maps " << opts.directions << " x " << opts.shadowSize << "^2; device " << ctx.deviceName()
+      << " (profile " << dev.name << "); median of " << opts.repeat << " runs\n";
+  const std::vector<Vec3> dirs = sphereDirections(opts.directions);
+  std::ostringstream quiet;
+  std::unique_ptr<EnvironmentMap> env;
+  GbufferPassVk gpass(ctx, scene);
+  std::unique_ptr<ShadowPassVk> spass;
+  std::unique_ptr<ShadePassVk> shpass;
+  GBuffer g = gpass.run();  // warm-up, and the G-buffer the shading pass reads
+  GBuffer gEmu;
+  ShadowMaps smEmu;
+  std::vector<float> shaded;
+  double emuSum = 0, vkSum = 0;
+  log << std::fixed << std::setprecision(1);
+  for (const std::string& p : passes) {
+    std::vector<double> te, tv;
+    if (p == "shadow") spass = std::make_unique<ShadowPassVk>(ctx, scene, opts.shadowSize);
+    if (p == "shade") {
+      if (!env) env = std::make_unique<EnvironmentMap>(loadEnvironment(scene.environment, quiet));
+      shpass = std::make_unique<ShadePassVk>(ctx, scene, *env->texture);
+    }
+    for (uint32_t r = 0; r <= opts.repeat; ++r) {  // run 0 warms up, not counted
+      double e = 0, v = 0;
+      if (p == "gbuffer") {
+        e = timeMs([&] { gbufferEmu(scene, dev, gEmu); });
+        gpass.run();
+        v = gpass.lastMs;
+      } else if (p == "shadow") {
+        e = timeMs([&] { shadowEmu(scene, dirs, opts.shadowSize, dev, smEmu); });
+        spass->run(dirs);
+        v = spass->lastMs;
+      } else {
+        e = timeMs([&] { shadeEmu(scene, g, *env->texture, dev, shaded); });
+        shpass->run(g);
+        v = shpass->lastMs;
+      }
+      if (r) te.push_back(e), tv.push_back(v);
+    }
+    const double me = median(te), mv = median(tv);
+    emuSum += me, vkSum += mv;
+    log << "  " << std::setw(8) << std::left << p << std::right << "  emu " << std::setw(8) << me << " ms   vulkan "
+        << std::setw(8) << mv << " ms   ratio " << std::setprecision(3) << me / mv << std::setprecision(1) << "\n";
+  }
+  log << "  total     emu " << std::setw(8) << emuSum << " ms   vulkan " << std::setw(8) << vkSum << " ms\n";
+  log << std::setprecision(3) << "ratio emu/vulkan: " << emuSum / vkSum << "\n";
+  return 0;
+}
+
+}  // namespace shadetwin
