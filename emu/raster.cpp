@@ -232,21 +232,37 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
     for (const TriSetup* s : bins[b]) {
       const int qx0 = std::max(s->x0, tx0) & ~1, qy0 = std::max(s->y0, ty0) & ~1;
       const int qx1 = std::min(s->x1, tx1), qy1 = std::min(s->y1, ty1);
-      for (int qy = qy0; qy <= qy1; qy += 2)
+      // Edge e from vertex e to e+1: E = A (PX - X_e) - B (PY - Y_e) = A PX - B PY + C, exact in
+      // int64. A pixel is inside when E > 0, or E = 0 on a top or left edge: with integer E that is
+      // E + [top-left] > 0, folded into C.
+      int64_t A[3], B[3], C[3];
+      for (int e = 0; e < 3; ++e) {
+        const int j = e == 2 ? 0 : e + 1;
+        A[e] = s->Y[j] - s->Y[e];
+        B[e] = s->X[j] - s->X[e];
+        C[e] = B[e] * s->Y[e] - A[e] * s->X[e] + (s->topLeft[e] ? 1 : 0);
+      }
+      const int64_t step = int64_t(1) << bits;
+      // Pixels of the quad outside the tile are never covered (their tile covers them).
+      const bool clipX = qx0 < tx0 || qx1 + 1 > tx1, clipY = qy0 < ty0 || qy1 + 1 > ty1;
+      for (int qy = qy0; qy <= qy1; qy += 2) {
+        const int64_t PY = int64_t(qy) << bits;
+        int64_t rowE[3];
+        for (int e = 0; e < 3; ++e) rowE[e] = A[e] * (int64_t(qx0) << bits) - B[e] * PY + C[e];
         for (int qx = qx0; qx <= qx1; qx += 2) {
           uint8_t covered = 0;
           for (int i = 0; i < 4; ++i) {
-            const int px = qx + (i & 1), py = qy + (i >> 1);
-            if (px > tx1 || py > ty1 || px < tx0 || py < ty0) continue;
-            const int64_t PX = int64_t(px) << bits, PY = int64_t(py) << bits;
-            bool inside = true;
-            for (int e = 0; e < 3 && inside; ++e) {
-              const int j = (e + 1) % 3;
-              const int64_t E = (s->Y[j] - s->Y[e]) * (PX - s->X[e]) - (s->X[j] - s->X[e]) * (PY - s->Y[e]);
-              inside = E > 0 || (E == 0 && s->topLeft[e]);
-            }
-            if (inside) covered |= uint8_t(1u << i);
+            const int64_t dx = (i & 1) ? step : 0, dy = (i >> 1) ? step : 0;
+            const bool in = (rowE[0] + A[0] * dx - B[0] * dy > 0) & (rowE[1] + A[1] * dx - B[1] * dy > 0) &
+                            (rowE[2] + A[2] * dx - B[2] * dy > 0);
+            covered |= uint8_t(unsigned(in) << i);
           }
+          for (int e = 0; e < 3; ++e) rowE[e] += 2 * A[e] * step;
+          if (clipX || clipY)
+            for (int i = 0; i < 4; ++i) {
+              const int px = qx + (i & 1), py = qy + (i >> 1);
+              if (px > tx1 || py > ty1 || px < tx0 || py < ty0) covered &= uint8_t(~(1u << i));
+            }
           if (!covered) continue;
           q.x = qx, q.y = qy, q.covered = covered, q.triangle = s->triangle, q.frontFacing = s->front;
           uint8_t live = 0;
@@ -278,6 +294,7 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
             ++frags;
           }
         }
+      }
     }
     quadCount.fetch_add(quads, std::memory_order_relaxed);
     fragCount.fetch_add(frags, std::memory_order_relaxed);
