@@ -15,7 +15,8 @@ const DeviceProfile& lavapipeProfile() {
       // verified with `shadetwin verify raster` on the shipped scenes (every triangle inside the viewport;
       // the device's x/y clipper is not modelled yet, see docs/DESIGN.md "Rasterizer")
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
-       /*verified=*/true}};
+       /*verified=*/true},
+      DeviceProfile::ImplicitLod::FastLog2PerQuad, /*implicitLodVerified=*/true};  // verify texture --implicit-lod
   return p;
 }
 
@@ -27,7 +28,8 @@ const DeviceProfile& nvidiaProfile() {
       /*filterWeightFracBits=*/8, /*lodFractionBits=*/8, /*unorm8FixedPoint=*/false,
       /*computeVectorLanes=*/1, /*fragmentVectorW=*/1, /*fragmentVectorH=*/1, DenormMode::Preserve, DenormMode::Preserve,
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
-       /*verified=*/false}};
+       /*verified=*/false},
+      DeviceProfile::ImplicitLod::Exact, /*implicitLodVerified=*/false};
   return p;
 }
 

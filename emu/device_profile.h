@@ -39,6 +39,12 @@ struct DeviceProfile {
     bool fineDerivatives; // dFdx per quad row / dFdy per column (else coarse: row 0 / column 0)
     bool verified;
   } raster;
+  // Implicit LOD of texture() in fragment shaders (emu::implicitLod). FastLog2PerQuad (lavapipe):
+  // derivatives per 2x2 quad (top-right - top-left, bottom-left - top-left), rho^2 = max over x/y of
+  // (ds*W)^2 + (dt*H)^2, lod = 0.5 * fastlog2(rho^2) with fastlog2(x) = (exponent - 1) + mantissa in [1, 2).
+  // Exact: 0.5 * log2(rho^2), per pixel with the stage's derivatives (unverified stand-in).
+  enum class ImplicitLod { FastLog2PerQuad, Exact } implicitLod;
+  bool implicitLodVerified;
   DenormMode denorm(Stage s) const { return s == Stage::Compute ? denormCompute : denormFragment; }
 };
 

@@ -324,7 +324,7 @@ struct SamplerPaths {
 SamplerPaths samplerPaths(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev) {
   const bool mixed = s.minFilter != s.magFilter;
   return {mixed,
-          dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && !mixed &&
+          dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && (!mixed || s.lodPerQuad) &&
               s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat,
           s.mipmapMode == MipmapMode::Linear && tex.levelCount() > 1};
 }
@@ -559,6 +559,23 @@ void textureLodVector(const Texture& tex, const SamplerDesc& s, const DeviceProf
 
 Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32_t level) {
   return tex.loadFloat(uint32_t(level), uint32_t(layer), uint32_t(x), uint32_t(y));
+}
+
+float implicitLod(const Texture& tex, const DeviceProfile& dev, const float s[4], const float t[4]) {
+  const float W = float(tex.width()), H = float(tex.height());
+  const float dsdx = (s[1] - s[0]) * W, dsdy = (s[2] - s[0]) * W;
+  const float dtdx = (t[1] - t[0]) * H, dtdy = (t[2] - t[0]) * H;
+  const float rx = dsdx * dsdx + dtdx * dtdx, ry = dsdy * dsdy + dtdy * dtdy;  // separate mul, add
+  const float rho2 = rx > ry ? rx : ry;
+  if (dev.implicitLod == DeviceProfile::ImplicitLod::Exact) return 0.5f * std::log2(rho2);
+  // gallivm's fast log2: (biased exponent - 127 - 1) + mantissa with the exponent bits set to 1.0.
+  uint32_t bits;
+  std::memcpy(&bits, &rho2, 4);
+  const int32_t e = int32_t((bits >> 23) & 0xffu) - 127 - 1;
+  const uint32_t mbits = (bits & 0x007fffffu) | 0x3f800000u;
+  float m;
+  std::memcpy(&m, &mbits, 4);
+  return (float(e) + m) * 0.5f;
 }
 
 }  // namespace emu

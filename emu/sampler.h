@@ -23,6 +23,10 @@ struct SamplerDesc {
   float lodBias = 0.0f;
   float minLod = 0.0f;
   float maxLod = 1000.0f;
+  // How the LOD arrives, not sampler state: true for texture() with implicit LOD, whose LOD lavapipe
+  // computes once per 2x2 quad. That lets its 8-bit AoS path run mixed mag/min filters (the min/mag
+  // choice is then per quad); with a per-pixel explicit LOD mixed filters take the float path.
+  bool lodPerQuad = false;
 };
 
 const char* addressName(AddressMode a);
@@ -31,6 +35,11 @@ const char* addressName(AddressMode a);
 /// mip lerping or mixed mag/min filtering per SIMD vector (lavapipe) can differ for lanes whose
 /// neighbours decide otherwise: use textureLodBatch with the stage's lane grouping for exact bits.
 Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, float layer, float lod);
+/// The LOD texture() derives for one 2x2 quad (pixels 0 top-left, 1 top-right, 2 bottom-left,
+/// 3 bottom-right) from its normalized coordinates s, t, before sampler bias and min/max clamps (it
+/// then goes through them like an explicit LOD). Per the profile's implicitLod model.
+float implicitLod(const Texture& tex, const DeviceProfile& dev, const float s[4], const float t[4]);
+
 /// texelFetch(sampler2DArray, ivec3(x, y, layer), level); coordinates must be in range.
 Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32_t level);
 

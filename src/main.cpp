@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
       sub->add_option("--filters", vo.filters,
                       "comma-separated cases: texelFetch,nearest,nearest-miplin,bilinear,trilinear,magN-minL");
       sub->add_option("--stages", vo.stages, "comma-separated shader stages: compute,fragment (default both)");
+      sub->add_flag("--implicit-lod", vo.implicitLod,
+                    "fragment-stage texture() with implicit LOD on smooth coordinate fields (instead of textureLod)");
       sub->add_option("--image", vo.image, "sample this image (EXR/HDR/PNG) with its MIP chain instead of random textures");
     }
   }

@@ -64,6 +64,28 @@ TEST(Sampler, BilinearAtTexelCentresReturnsTexels) {
   EXPECT_EQ(emu::textureLod(t, s, lp, 0.0f, 0.5f, 0, 0).r, 2.0f);  // wraps between texel 1 and 0
 }
 
+TEST(Sampler, ImplicitLodFastLog2) {
+  // A 64 x 32 texture; quads (TL, TR, BL, BR) whose coordinates step k texels per pixel in x.
+  emu::Texture t(emu::Format::R32F, 64, 32, 1, {std::vector<uint8_t>(64 * 32 * 4)});
+  auto quad = [&](float kx, float ky, const emu::DeviceProfile& dev) {
+    const float s[4] = {0.25f, 0.25f + kx / 64.0f, 0.25f, 0.25f + kx / 64.0f};
+    const float tt[4] = {0.5f, 0.5f, 0.5f + ky / 32.0f, 0.5f + ky / 32.0f};
+    return emu::implicitLod(t, dev, s, tt);
+  };
+  const auto& lp = emu::lavapipeProfile();
+  // rho^2 = 1, 4, 16: powers of two are exact: lod 0, 1, 2.
+  EXPECT_EQ(quad(1, 1, lp), 0.0f);
+  EXPECT_EQ(quad(2, 1, lp), 1.0f);
+  EXPECT_EQ(quad(1, 4, lp), 2.0f);
+  // Between them the log2 is linear in the mantissa: rho^2 = 9 (3 texels/pixel) gives
+  // ((3 - 1) + 1.125) / 2 = 1.5625, not log2(3) = 1.585 (the profile's "fast log2").
+  EXPECT_EQ(quad(3, 1, lp), 1.5625f);
+  EXPECT_NEAR(quad(3, 1, emu::nvidiaProfile()), std::log2(3.0), 1e-6);
+  // Magnification: half a texel per pixel -> -1; no change at all -> the log2 of 0 (-127 / 2).
+  EXPECT_EQ(quad(0.5f, 0.5f, lp), -1.0f);
+  EXPECT_EQ(quad(0, 0, lp), -63.5f);
+}
+
 TEST(Sampler, Unorm8FixedPointPathMatchesLavapipeFacts) {
   // 2x1 RGBA8 texture (0, 255); u = 0.3 -> s = rint(0.6 * 256) - 128 = 26, w = 26:
   // 0 + ((26 * 255 + 128) >> 8) = 26 -> 26 * (1/255f).

@@ -1,6 +1,8 @@
 #version 450
-// Entry point of `shadetwin verify texture`: one textureLod (mode 0) or texelFetch (mode 1) per
-// invocation; query = (u, v, layer, lod), or the int bits of (x, y, layer, level) for texelFetch.
+// Entry point of `shadetwin verify texture`: one textureLod (mode 0), texelFetch (mode 1) or, in the
+// fragment stage, implicit-LOD texture() (mode 2) per invocation; query = (u, v, layer, lod), or the
+// int bits of (x, y, layer, level) for texelFetch. Mode 2 ignores the query's lod: the LOD comes from
+// the quad's derivatives of (u, v), so neighbouring pixels' queries must be coherent.
 layout(set = 0, binding = 0) uniform sampler2DArray tex;
 layout(std430, set = 0, binding = 1) readonly buffer Queries { vec4 queries[]; };
 layout(std430, set = 0, binding = 2) writeonly buffer Results { vec4 results[]; };
@@ -11,6 +13,10 @@ void run(uint i) {
   vec4 q = queries[i];
   if (pc.mode == 0u) {
     results[i] = textureLod(tex, vec3(q.x, q.y, q.z), q.w);
+#ifdef STAGE_FRAGMENT
+  } else if (pc.mode == 2u) {
+    results[i] = texture(tex, vec3(q.x, q.y, q.z));
+#endif
   } else {
     results[i] = texelFetch(tex, ivec3(floatBitsToInt(q.x), floatBitsToInt(q.y), floatBitsToInt(q.z)), floatBitsToInt(q.w));
   }

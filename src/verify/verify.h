@@ -16,6 +16,7 @@ struct VerifyOptions {
   bool finiteTexels = false;  // texture: no inf, NaN or denormal texels
   std::string filters;        // texture: comma-separated filter cases to run (empty = all)
   std::string stages;         // texture: "compute", "fragment" or both (empty = both)
+  bool implicitLod = false;   // texture: fragment-stage texture() with the LOD from quad derivatives
   std::string image;          // texture: sample this image file (MIP chain from the shared kernel) instead of random textures
   std::string scene;          // raster/shadow/shade/frame: scene file
   uint32_t width = 0, height = 0;  // raster/shade/frame: override the scene's image size

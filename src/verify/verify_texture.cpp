@@ -102,6 +102,50 @@ float randomLod(std::mt19937& rng, uint32_t levels) {
   return std::uniform_real_distribution<float>(-2.0f, float(levels) + 1.0f)(rng);
 }
 
+/// Coherent coordinates for implicit-LOD texture(): per aligned 16 x 16 block of the 1024-wide
+/// fragment target, an affine map of the pixel position (random scale 2^-4 .. 2^6 texels per pixel,
+/// rotation, anisotropy up to 4) plus a small quadratic term, and one random layer.
+void smoothQueries(std::mt19937& rng, const emu::Texture& tex, std::vector<float>& q, size_t n) {
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  const size_t rowLen = 1024, blocksPerRow = rowLen / 16, blocks = blocksPerRow * ((n / rowLen + 15) / 16);
+  struct Map { float u0, v0, a, b, c, d, k, layer; };
+  std::vector<Map> maps(blocks);
+  for (auto& m : maps) {
+    const float scale = std::exp2(-4.0f + 10.0f * U(rng)) / float(tex.width());
+    const float aniso = 1.0f + 3.0f * U(rng), th = 6.2831853f * U(rng);
+    m = {U(rng) * 2.0f - 0.5f, U(rng) * 2.0f - 0.5f, scale * std::cos(th), -scale * aniso * std::sin(th),
+         scale * std::sin(th), scale * aniso * std::cos(th), scale * 0.05f * (U(rng) - 0.5f), float(rng() % tex.layers())};
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const size_t x = i % rowLen, y = i / rowLen;
+    const Map& m = maps[(y / 16) * blocksPerRow + x / 16];
+    const float fx = float(x % 16), fy = float(y % 16);
+    q[4 * i] = m.u0 + m.a * fx + m.b * fy + m.k * fx * fy;
+    q[4 * i + 1] = m.v0 + m.c * fx + m.d * fy - m.k * fx * fx;
+    q[4 * i + 2] = m.layer;
+    q[4 * i + 3] = 0.0f;
+  }
+}
+
+/// The LOD each pixel's texture() gets: the device's implicit LOD of its 2x2 quad. side[i] is the
+/// triangle of the full-screen pair that shades pixel i: in a quad split by the diagonal, the lanes of
+/// the other triangle are masked and their buffer loads return 0, so their coordinates count as 0.
+void implicitLods(const emu::Texture& tex, const emu::DeviceProfile& dev, const std::vector<float>& q,
+                  const std::vector<uint8_t>& side, std::vector<float>& out, size_t n) {
+  const size_t rowLen = 1024;
+  for (size_t i = 0; i < n; ++i) {
+    const size_t x = i % rowLen & ~size_t(1), y = i / rowLen & ~size_t(1);
+    const size_t p[4] = {y * rowLen + x, y * rowLen + x + 1, (y + 1) * rowLen + x, (y + 1) * rowLen + x + 1};
+    float s[4], t[4];
+    for (int k = 0; k < 4; ++k) {
+      const bool live = p[k] < n && side[p[k]] == side[i];
+      s[k] = live ? q[4 * p[k]] : 0.0f;
+      t[k] = live ? q[4 * p[k] + 1] : 0.0f;
+    }
+    out[4 * i + 3] = emu::implicitLod(tex, dev, s, t);
+  }
+}
+
 struct FilterCase {
   const char* name;
   emu::Filter mag, min;
@@ -152,13 +196,14 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
   std::vector<uint32_t> vectors[2] = {std::vector<uint32_t>(n), std::vector<uint32_t>(n)};
   const uint32_t fw = uint32_t(profile.fragmentVectorW), fh = uint32_t(profile.fragmentVectorH), rowLen = 1024;
   const double rows = double((n + rowLen - 1) / rowLen);
-  std::vector<uint8_t> sidesSeen(n / (fw * fh) * 2 + 2, 0);
+  std::vector<uint8_t> sidesSeen(n / (fw * fh) * 2 + 2, 0), sideOf(n);
   for (size_t i = 0; i < n; ++i) {
     vectors[0][i] = uint32_t(i / uint32_t(profile.computeVectorLanes));
     uint32_t x = uint32_t(i % rowLen), y = uint32_t(i / rowLen);
     uint32_t side = (double(x) + 0.5) * rows > (double(y) + 0.5) * rowLen ? 1u : 0u;
     uint32_t block = (y / fh) * ((rowLen + fw - 1) / fw) + x / fw;
     vectors[1][i] = block * 2 + side;
+    sideOf[i] = uint8_t(side);
     sidesSeen[block] |= uint8_t(1u << side);
   }
   std::vector<uint32_t> inactiveVectors;  // vectors of split stamps: each gets one zero lane
@@ -184,6 +229,7 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
           sd.mipmapMode = kFilters[fi].mip;
         }
         sd.addressU = sd.addressV = am;
+        sd.lodPerQuad = opts.implicitLod;
         switch (rng() % 4) {  // sampler LOD state: bias, min/max clamps
           case 1: sd.lodBias = (rng() & 1) ? 0.75f : -1.25f; break;
           case 2: sd.minLod = 0.5f; sd.maxLod = 2.25f; break;
@@ -200,6 +246,7 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
         vk::Sampler sampler(ctx, si);
         for (emu::Stage stage : {emu::Stage::Compute, emu::Stage::Fragment}) {
           const char* stageName = stage == emu::Stage::Compute ? "compute" : "fragment";
+          if (opts.implicitLod && (stage == emu::Stage::Compute || fi < 0)) continue;  // texture() needs quads
           if (!opts.stages.empty() && ("," + opts.stages + ",").find(std::string(",") + stageName + ",") == std::string::npos) continue;
           for (size_t i = 0; i < n; ++i) {
             if (fi < 0) {
@@ -207,13 +254,14 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
               int32_t v[4] = {int32_t(rng() % tex.levelWidth(lvl)), int32_t(rng() % tex.levelHeight(lvl)),
                               int32_t(rng() % tex.layers()), int32_t(lvl)};
               std::memcpy(&q[4 * i], v, 16);
-            } else {
+            } else if (!opts.implicitLod) {
               q[4 * i] = randomCoord(rng, tex.width());
               q[4 * i + 1] = randomCoord(rng, tex.height());
               q[4 * i + 2] = float(rng() % tex.layers());
               q[4 * i + 3] = randomLod(rng, tex.levelCount());
             }
           }
+          if (opts.implicitLod) smoothQueries(rng, tex, q, n);
           {
             if (fi < 0) {
               for (size_t i = 0; i < n; ++i) {
@@ -227,7 +275,14 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
                 emu::textureLodBatch(tex, sd, profile, stage, q.data(), emuOut.data(), n, vectors[0].data());
               } else {
                 qFrag.assign(q.begin(), q.end());
+                // Lanes masked off in split vectors load zeros: implicit LOD of a zero quad.
+                const float zeros[4] = {0, 0, 0, 0};
                 qFrag.resize(4 * vectors[1].size(), 0.0f);
+                if (opts.implicitLod) {
+                  implicitLods(tex, profile, q, sideOf, qFrag, n);
+                  const float lz = emu::implicitLod(tex, profile, zeros, zeros);
+                  for (size_t k = n; k < vectors[1].size(); ++k) qFrag[4 * k + 3] = lz;
+                }
                 outFrag.resize(qFrag.size());
                 emu::textureLodBatch(tex, sd, profile, stage, qFrag.data(), outFrag.data(), vectors[1].size(), vectors[1].data());
                 std::copy(outFrag.begin(), outFrag.begin() + 4 * n, emuOut.begin());
@@ -235,7 +290,7 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
             }
           }
           std::memcpy(qBuf.data(), q.data(), n * 16);
-          struct { uint32_t mode, count, width; } push{fi < 0 ? 1u : 0u, uint32_t(n), 1024};
+          struct { uint32_t mode, count, width; } push{fi < 0 ? 1u : opts.implicitLod ? 2u : 0u, uint32_t(n), 1024};
           const vk::Binding binds[] = {{layout[0], VK_NULL_HANDLE, image.view(), sampler.handle()},
                                        {layout[1], qBuf.handle()}, {layout[2], rBuf.handle()}};
           (stage == emu::Stage::Compute ? comp : frag).run(binds, &push, uint32_t(n), 1024);
