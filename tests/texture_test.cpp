@@ -8,6 +8,7 @@
 #include "emu/format.h"
 #include "emu/sampler.h"
 #include "emu/texture.h"
+#include "shade/instantiate.h"
 
 namespace {
 std::vector<uint8_t> floats(std::initializer_list<float> v) {
@@ -84,6 +85,36 @@ TEST(Sampler, ImplicitLodFastLog2) {
   // Magnification: half a texel per pixel -> -1; no change at all -> the log2 of 0 (-127 / 2).
   EXPECT_EQ(quad(0.5f, 0.5f, lp), -1.0f);
   EXPECT_EQ(quad(0, 0, lp), -63.5f);
+}
+
+TEST(Sampler, DialectTextureUsesTheQuadLod) {
+  // shade::x8 texture(): two quads; the first steps 2 texels per pixel (LOD 1), the second 1/2 (LOD -1,
+  // magnified): texture() must equal textureLod at those LODs, lane for lane.
+  std::vector<std::vector<uint8_t>> levels;
+  for (uint32_t w = 64, h = 32; ; w = std::max(1u, w / 2), h = std::max(1u, h / 2)) {
+    std::vector<float> v(size_t(w) * h * 4);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = float((i * 2654435761u) % 1000) / 1000.0f;
+    levels.push_back(std::vector<uint8_t>(v.size() * 4));
+    std::memcpy(levels.back().data(), v.data(), v.size() * 4);
+    if (w == 1 && h == 1) break;
+  }
+  emu::Texture t(emu::Format::RGBA32F, 64, 32, 1, levels);
+  shadetwin::shade::Sampler2D s{&t, {}, &emu::lavapipeProfile()};
+  using F = emu::F32<8>;
+  F u, v, lod;
+  const float step[2] = {2.0f / 64.0f, 0.5f / 64.0f}, lodOf[2] = {1.0f, -1.0f};
+  for (int q = 0; q < 2; ++q)
+    for (int i = 0; i < 4; ++i) {
+      u.set(4 * q + i, 0.3f + step[q] * float(i & 1) + 0.01f * float(q));
+      v.set(4 * q + i, 0.6f + step[q] * 2.0f * float(i >> 1));  // 64 x 32: same texel step in v
+      lod.set(4 * q + i, lodOf[q]);
+    }
+  auto a = shadetwin::shade::x8::texture(s, shadetwin::shade::V2<F>(u, v));
+  auto b = shadetwin::shade::x8::textureLod(s, shadetwin::shade::V2<F>(u, v), lod);
+  for (int i = 0; i < 8; ++i) {
+    EXPECT_EQ(a.x[i], b.x[i]) << i;
+    EXPECT_EQ(a.w[i], b.w[i]) << i;
+  }
 }
 
 TEST(Sampler, Unorm8FixedPointPathMatchesLavapipeFacts) {

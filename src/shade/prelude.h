@@ -75,6 +75,11 @@ using Sampler2D = ::shadetwin::shade::Sampler2D;
 inline Float4 textureLod(const Sampler2D& s, Float2 uv, Float lod) {
   return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod);
 }
+// Implicit LOD from the quad (fragment stage, SIMD builds only: lanes are whole 2x2 quads).
+template <class F = Float>
+inline ::shadetwin::shade::V4<F> texture(const Sampler2D& s, ::shadetwin::shade::V2<F> uv) {
+  return ::shadetwin::shade::textureImplicitLanes(s, uv.x, uv.y);
+}
 
 inline Float abs(Float x) { return uintBitsToFloat(floatBitsToUint(x) & 0x7fffffffu); }
 inline Float min(Float a, Float b) { return select(b < a, b, a); }  // GLSL: y if y < x, else x

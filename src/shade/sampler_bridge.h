@@ -42,4 +42,31 @@ V4<emu::F32<N>> textureLodLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v
   return r;
 }
 
+/// texture() with implicit LOD: the lanes are 2x2 quads in groups of four (top-left, top-right,
+/// bottom-left, bottom-right), as a fragment stage runs them; each quad's LOD comes from its own
+/// coordinates (emu::implicitLod, per the profile), then the N lanes sample as one device vector.
+/// There is no scalar form: a lone pixel has no derivatives (using texture() in the scalar build is
+/// a compile error).
+template <int N>
+V4<emu::F32<N>> textureImplicitLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v) {
+  static_assert(N % 4 == 0, "texture() needs whole 2x2 quads of lanes");
+  float q[4 * N], out[4 * N];
+  for (int g = 0; g < N; g += 4) {
+    const float su[4] = {u[g], u[g + 1], u[g + 2], u[g + 3]}, sv[4] = {v[g], v[g + 1], v[g + 2], v[g + 3]};
+    const float lod = emu::implicitLod(*s.tex, *s.dev, su, sv);
+    for (int i = g; i < g + 4; ++i) q[4 * i] = u[i], q[4 * i + 1] = v[i], q[4 * i + 2] = 0.0f, q[4 * i + 3] = lod;
+  }
+  emu::SamplerDesc d = s.desc;
+  d.lodPerQuad = true;
+  emu::textureLodVector(*s.tex, d, *s.dev, q, out, N);
+  V4<emu::F32<N>> r;
+  for (int i = 0; i < N; ++i) {
+    r.x.set(i, out[4 * i]);
+    r.y.set(i, out[4 * i + 1]);
+    r.z.set(i, out[4 * i + 2]);
+    r.w.set(i, out[4 * i + 3]);
+  }
+  return r;
+}
+
 }  // namespace shadetwin::shade
