@@ -42,6 +42,18 @@ SceneGpu::SceneGpu(vk::Context& ctx, const Scene& scene) {
   for (size_t i = 0; i < scene.objects.size(); ++i) objects->as<ObjectGpu>()[i] = objectGpu(scene.objects[i]);
 }
 
+void SceneGpu::drawObjects(VkCommandBuffer cmd, const Scene& scene, const std::function<void(uint32_t)>& push) const {
+  for (uint32_t oi = 0; oi < scene.objects.size(); ++oi) {
+    const Object& o = scene.objects[oi];
+    VkBuffer vbh = vertices[o.mesh]->handle();
+    VkDeviceSize off = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vbh, &off);
+    vkCmdBindIndexBuffer(cmd, indices[o.mesh]->handle(), 0, VK_INDEX_TYPE_UINT32);
+    push(oi);
+    vkCmdDrawIndexed(cmd, uint32_t(scene.meshes[o.mesh].indices.size()), 1, 0, 0, 0);
+  }
+}
+
 GbufferPassVk::GbufferPassVk(vk::Context& ctx, const Scene& scene)
     : ctx_(ctx), scene_(scene), gpu_(ctx, scene), frame_(ctx, 64), pass_(ctx, gbufferDesc(scene)) {
   const Mat4 vp = scene.viewProjection();
@@ -58,15 +70,7 @@ GBuffer GbufferPassVk::run() {
   auto t0 = std::chrono::steady_clock::now();
   ctx_.submit([&](VkCommandBuffer cmd) {
     pass_.begin(cmd);
-    for (uint32_t oi = 0; oi < scene_.objects.size(); ++oi) {
-      const Object& o = scene_.objects[oi];
-      VkBuffer vbh = gpu_.vertices[o.mesh]->handle();
-      VkDeviceSize off = 0;
-      vkCmdBindVertexBuffers(cmd, 0, 1, &vbh, &off);
-      vkCmdBindIndexBuffer(cmd, gpu_.indices[o.mesh]->handle(), 0, VK_INDEX_TYPE_UINT32);
-      pass_.pushConstants(cmd, &oi);
-      vkCmdDrawIndexed(cmd, uint32_t(scene_.meshes[o.mesh].indices.size()), 1, 0, 0, 0);
-    }
+    gpu_.drawObjects(cmd, scene_, [&](uint32_t oi) { pass_.pushConstants(cmd, &oi); });
     pass_.end(cmd);
     for (int i = 0; i < kGbufAttachments; ++i) pass_.copyOut(cmd, i, readback_[size_t(i)]->handle(), 0);
     pass_.copyOut(cmd, -1, readback_[kGbufAttachments]->handle(), 0);

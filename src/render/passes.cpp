@@ -150,8 +150,7 @@ void shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, con
         const float* t = g.texels.data() + i * kGbufFloats;
         g0.x.set(l, t[0]), g0.y.set(l, t[1]), g0.z.set(l, t[2]), g0.w.set(l, t[3]);
         g1.x.set(l, t[4]), g1.y.set(l, t[5]), g1.z.set(l, t[6]), g1.w.set(l, t[7]);
-        const uint32_t id = t[3] == 0.0f ? 0u : uint32_t(std::fabs(t[3])) - 1u;
-        const Material& m = scene.materials[std::min<size_t>(id, scene.materials.size() - 1)];
+        const Material& m = scene.materials[shade::scalar::materialSlot(t[3], uint32_t(scene.materials.size()))];
         dif.x.set(l, m.diffuse[0]), dif.y.set(l, m.diffuse[1]), dif.z.set(l, m.diffuse[2]);
         spec.x.set(l, m.specular[0]), spec.y.set(l, m.specular[1]), spec.z.set(l, m.specular[2]);
         px.set(l, float(i % g.width));

@@ -2,6 +2,7 @@
 // and run many times: the G-buffer pass, the shadow-map passes and the shading pass. Each run()
 // records, submits, waits, reads back, and records the wall time of the submission in lastMs.
 #pragma once
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -17,6 +18,9 @@ struct SceneGpu {
   SceneGpu(vk::Context& ctx, const Scene& scene);
   std::vector<std::unique_ptr<vk::Buffer>> vertices, indices;  // per mesh
   std::unique_ptr<vk::Buffer> objects;                         // ObjectGpu per object
+  /// Records one indexed draw per object, in scene order; `push(oi)` records the object's push
+  /// constants before its draw.
+  void drawObjects(VkCommandBuffer cmd, const Scene& scene, const std::function<void(uint32_t)>& push) const;
 };
 
 class GbufferPassVk {

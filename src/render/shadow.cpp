@@ -72,8 +72,6 @@ void shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t
   sm.viewProj.clear();
   for (const Vec3& d : directions) sm.viewProj.push_back(shadowViewProjection(scene, d));
   sm.maps.resize(directions.size());
-  std::vector<ObjectGpu> objs;
-  for (const Object& o : scene.objects) objs.push_back(objectGpu(o));
   std::vector<ShadowStats> per(directions.size());
   tbb::parallel_for(size_t(0), directions.size(), [&](size_t di) {
     emu::Framebuffer fb;
@@ -83,7 +81,7 @@ void shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t
     ShadowStats& st = per[di];
     for (uint32_t oi = 0; oi < scene.objects.size(); ++oi) {
       const Mesh& mesh = scene.meshes[scene.objects[oi].mesh];
-      const float* m = objs[oi].model;
+      const float* m = scene.objects[oi].model.data();
       auto t0 = std::chrono::steady_clock::now();
       // Vertex stage: the shared shadowVertex, scalar build (vertex stage keeps denormals).
       std::vector<float> clip(4 * mesh.positions.size());

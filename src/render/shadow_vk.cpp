@@ -47,18 +47,12 @@ ShadowMaps ShadowPassVk::run(const std::vector<Vec3>& directions) {
   ctx_.submit([&](VkCommandBuffer cmd) {
     for (size_t di = 0; di < directions.size(); ++di) {
       pass_.begin(cmd);
-      for (uint32_t oi = 0; oi < scene_.objects.size(); ++oi) {
-        const Object& o = scene_.objects[oi];
-        VkBuffer vbh = gpu_.vertices[o.mesh]->handle();
-        VkDeviceSize off = 0;
-        vkCmdBindVertexBuffers(cmd, 0, 1, &vbh, &off);
-        vkCmdBindIndexBuffer(cmd, gpu_.indices[o.mesh]->handle(), 0, VK_INDEX_TYPE_UINT32);
+      gpu_.drawObjects(cmd, scene_, [&](uint32_t oi) {
         ShadowPush push;
         std::memcpy(push.lightViewProj, sm.viewProj[di].data(), 64);
         push.object = oi;
         pass_.pushConstants(cmd, &push);
-        vkCmdDrawIndexed(cmd, uint32_t(scene_.meshes[o.mesh].indices.size()), 1, 0, 0, 0);
-      }
+      });
       pass_.end(cmd);
       pass_.copyOut(cmd, -1, readback_->handle(), di * mapBytes);
     }

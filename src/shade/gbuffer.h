@@ -49,6 +49,13 @@ struct GbufTexels {
   Float4 g3;
 };
 
+// Material slot of a G-buffer pixel: G0.w = (id + 1) * handedness, 0 for no geometry (slot 0 then),
+// clamped to the material table's last entry. Used by the shading passes of both builds.
+Uint materialSlot(Float g0w, Uint materialCount) {
+  Uint id = select(g0w == 0.0f, Uint(0u), Uint(abs(g0w)) - 1u);
+  return min(id, materialCount - 1u);
+}
+
 // duvdx / duvdy: the quad derivatives dFdx(uv) / dFdy(uv) of the stage.
 GbufTexels gbufferFragment(Float3 worldPos, Float3 normal, Float4 tangent, Float2 uv, Float2 duvdx, Float2 duvdy,
                            Float materialId) {

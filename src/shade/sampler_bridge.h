@@ -50,23 +50,15 @@ V4<emu::F32<N>> textureLodLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v
 template <int N>
 V4<emu::F32<N>> textureImplicitLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v) {
   static_assert(N % 4 == 0, "texture() needs whole 2x2 quads of lanes");
-  float q[4 * N], out[4 * N];
+  emu::F32<N> lod;
   for (int g = 0; g < N; g += 4) {
     const float su[4] = {u[g], u[g + 1], u[g + 2], u[g + 3]}, sv[4] = {v[g], v[g + 1], v[g + 2], v[g + 3]};
-    const float lod = emu::implicitLod(*s.tex, *s.dev, su, sv);
-    for (int i = g; i < g + 4; ++i) q[4 * i] = u[i], q[4 * i + 1] = v[i], q[4 * i + 2] = 0.0f, q[4 * i + 3] = lod;
+    const float l = emu::implicitLod(*s.tex, *s.dev, su, sv);
+    for (int i = g; i < g + 4; ++i) lod.set(i, l);
   }
-  emu::SamplerDesc d = s.desc;
-  d.lodPerQuad = true;
-  emu::textureLodVector(*s.tex, d, *s.dev, q, out, N);
-  V4<emu::F32<N>> r;
-  for (int i = 0; i < N; ++i) {
-    r.x.set(i, out[4 * i]);
-    r.y.set(i, out[4 * i + 1]);
-    r.z.set(i, out[4 * i + 2]);
-    r.w.set(i, out[4 * i + 3]);
-  }
-  return r;
+  Sampler2D perQuad = s;
+  perQuad.desc.lodPerQuad = true;
+  return textureLodLanes(perQuad, u, v, lod);
 }
 
 }  // namespace shadetwin::shade

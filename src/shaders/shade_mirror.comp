@@ -23,8 +23,7 @@ void main() {
   uint p = min(i, pc.count - 1u);  // the tail of the last vector shades the last pixel again, as the emulator
   vec4 g0 = gbuf[p].g0;
   vec4 g1 = gbuf[p].g1;
-  uint id = g0.w == 0.0 ? 0u : uint(abs(g0.w)) - 1u;
-  MaterialGpu m = materials[min(id, pc.materialCount - 1u)];
+  MaterialGpu m = materials[materialSlot(g0.w, pc.materialCount)];
   vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
   vec4 c = shadeMirror(env, pc.envMaxLod, pc.intensity, g0, g1, pc.eye.xyz, ray, m.diffuse.xyz, m.specular.xyz);
   if (i < pc.count) color[i] = c;

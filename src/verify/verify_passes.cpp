@@ -26,8 +26,7 @@ Setup setUp(const VerifyOptions& opts, std::ostream& out) {
   s.scene = loadScene(opts.scene);
   if (opts.width) s.scene.width = opts.width;
   if (opts.height) s.scene.height = opts.height;
-  if (!opts.technique.empty() && opts.technique != s.scene.technique)
-    s.scene.technique = opts.technique;
+  if (!opts.technique.empty()) s.scene.technique = opts.technique;
   if (s.scene.technique != "mirror")
     throw std::invalid_argument("--technique " + s.scene.technique + ": only 'mirror' is implemented so far");
   vk::ContextOptions co;
