@@ -12,9 +12,10 @@ const DeviceProfile& lavapipeProfile() {
       "Mesa 22.3.6 llvmpipe (LLVM 15, 256-bit), measured with `shadetwin verify texture` and ../shared/facts/lavapipe.md",
       /*filterWeightFracBits=*/0, /*lodFractionBits=*/0, /*unorm8FixedPoint=*/true,
       /*computeVectorLanes=*/8, /*fragmentVectorW=*/4, /*fragmentVectorH=*/2, DenormMode::Preserve, DenormMode::Flush,
-      // verified with `shadetwin verify raster` on the shipped scenes (every triangle inside the viewport;
-      // the device's x/y clipper is not modelled yet, see docs/DESIGN.md "Rasterizer")
+      // verified with `shadetwin verify raster` on the shipped scenes, scenes/clipped.json included
+      // (triangles crossing every clip plane)
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
+       DeviceProfile::Raster::Clip::DrawModule, /*clipFromNearer=*/true, /*clipViewportFma=*/false,
        /*verified=*/true},
       DeviceProfile::ImplicitLod::FastLog2PerQuad, /*implicitLodVerified=*/true};  // verify texture --implicit-lod
   return p;
@@ -28,6 +29,7 @@ const DeviceProfile& nvidiaProfile() {
       /*filterWeightFracBits=*/8, /*lodFractionBits=*/8, /*unorm8FixedPoint=*/false,
       /*computeVectorLanes=*/1, /*fragmentVectorW=*/1, /*fragmentVectorH=*/1, DenormMode::Preserve, DenormMode::Preserve,
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
+       DeviceProfile::Raster::Clip::GuardBand, /*clipFromNearer=*/false, /*clipViewportFma=*/true,
        /*verified=*/false},
       DeviceProfile::ImplicitLod::Exact, /*implicitLodVerified=*/false};
   return p;

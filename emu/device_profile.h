@@ -37,6 +37,14 @@ struct DeviceProfile {
     bool interpFma;       // a = fma(dadx, x, a0); a = fma(dady, y, a)
     bool cwSwapsLast;     // clockwise triangles are set up as (v0, v2, v1) (else (v1, v0, v2))
     bool fineDerivatives; // dFdx per quad row / dFdy per column (else coarse: row 0 / column 0)
+    // Clipping. GuardBand: only the near (z >= 0) and far (z <= w) planes cut triangles; x/y are
+    // left to the scissor (a GPU with a guard band larger than any viewport). DrawModule: Mesa's
+    // draw-module clipper (what lavapipe runs, no guard band): a vertex outside any of the six planes
+    // sends the triangle through Sutherland-Hodgman in plane order x <= w, x >= -w, y <= w, y >= -w,
+    // z >= 0, z <= w (only the planes some vertex violates), the polygon fanned from its first vertex.
+    enum class Clip { GuardBand, DrawModule } clip;
+    bool clipFromNearer;   // a new vertex is interpolated from the endpoint nearer the plane (else from the outside one)
+    bool clipViewportFma;  // window position of a new vertex with fused mul + add (lavapipe: C code, separate)
     bool verified;
   } raster;
   // Implicit LOD of texture() in fragment shaders (emu::implicitLod). FastLog2PerQuad (lavapipe):

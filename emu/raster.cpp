@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -50,6 +51,7 @@ struct WinVertex {
 struct ClipVertex {
   float c[4];
   float v[kMaxVaryings];
+  bool original;  // a vertex of the draw (window position from the vertex stage), not made by the clipper
 };
 
 struct Plane3 {
@@ -68,9 +70,8 @@ struct TriSetup {
 
 float madd(bool fused, float a, float b, float c) { return fused ? std::fma(a, b, c) : a * b + c; }
 
-WinVertex toWindow(const DeviceProfile& dev, const ClipVertex& cv, int nv, float sx, float tx, float sy, float ty) {
+WinVertex toWindow(bool fused, const ClipVertex& cv, int nv, float sx, float tx, float sy, float ty) {
   WinVertex w;
-  const bool fused = dev.raster.viewportFma;
   w.oow = 1.0f / cv.c[3];
   w.x = madd(fused, cv.c[0] * w.oow, sx, tx);
   w.y = madd(fused, cv.c[1] * w.oow, sy, ty);
@@ -79,28 +80,87 @@ WinVertex toWindow(const DeviceProfile& dev, const ClipVertex& cv, int nv, float
   return w;
 }
 
-// Sutherland-Hodgman against 0 <= z and z <= w (the near and far planes); returns the polygon.
-int clipNearFar(ClipVertex poly[9], int n, int nv) {
-  for (int plane = 0; plane < 2; ++plane) {
-    ClipVertex out[9];
-    int m = 0;
-    auto dist = [&](const ClipVertex& v) { return plane == 0 ? v.c[2] : v.c[3] - v.c[2]; };
-    for (int i = 0; i < n; ++i) {
-      const ClipVertex &a = poly[i], &b = poly[(i + 1) % n];
-      float da = dist(a), db = dist(b);
-      if (da >= 0) out[m++] = a;
-      if ((da >= 0) != (db >= 0)) {
-        float t = da / (da - db);
-        ClipVertex c;
-        for (int k = 0; k < 4; ++k) c.c[k] = a.c[k] + t * (b.c[k] - a.c[k]);
-        for (int k = 0; k < nv; ++k) c.v[k] = a.v[k] + t * (b.v[k] - a.v[k]);
-        out[m++] = c;
-      }
-    }
-    n = m;
-    std::copy(out, out + m, poly);
-    if (n < 3) return 0;
+// Clip planes as dot products with the clip-space position, in the order a clipper visits them:
+// x <= w, x >= -w, y <= w, y >= -w, z >= 0 (Vulkan's [0, w] depth), z <= w.
+constexpr float kPlanes[6][4] = {{-1, 0, 0, 1}, {1, 0, 0, 1}, {0, -1, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 0}, {0, 0, -1, 1}};
+
+// Four products summed left to right, each rounded (the C dot product of Mesa's clipper; a
+// multiplication by 0 of an infinite coordinate gives NaN, which discards the triangle).
+float planeDistance(const float c[4], const float p[4]) { return c[0] * p[0] + c[1] * p[1] + c[2] * p[2] + c[3] * p[3]; }
+
+// Outcode: bit i set when the vertex is outside plane i (exact comparisons, as the vertex stage makes them).
+unsigned outcode(const float c[4], bool xy) {
+  unsigned m = 0;
+  if (xy) {
+    m |= unsigned(c[0] > c[3]) << 0;
+    m |= unsigned(0.0f > c[0] + c[3]) << 1;
+    m |= unsigned(c[1] > c[3]) << 2;
+    m |= unsigned(0.0f > c[1] + c[3]) << 3;
   }
+  m |= unsigned(0.0f > c[2]) << 4;
+  m |= unsigned(c[2] > c[3]) << 5;
+  return m;
+}
+
+// new = from + t (to - from), per component with separate mul and add.
+void lerpVertex(ClipVertex& dst, float t, const ClipVertex& from, const ClipVertex& to, int nv) {
+  for (int k = 0; k < 4; ++k) dst.c[k] = from.c[k] + t * (to.c[k] - from.c[k]);
+  for (int k = 0; k < nv; ++k) dst.v[k] = from.v[k] + t * (to.v[k] - from.v[k]);
+  dst.original = false;
+}
+
+constexpr int kMaxPoly = 16;
+
+// Sutherland-Hodgman over the planes in `mask`, in plane order; poly[0..2] in, polygon out (returns
+// its size, 0 when nothing is left). Re-implements the semantics of Mesa's draw_pipe_clip.c:
+// a vertex is kept when its distance is >= 0; a crossing edge gets a new vertex with
+// t = d_near / (d_near - d_far) measured from one endpoint (the nearer one with clipFromNearer,
+// else the outside one); a NaN or infinite distance discards the triangle; the polygon keeps
+// its first vertex first (the next pass starts from out[0]).
+int clipPolygon(const DeviceProfile::Raster& r, ClipVertex* poly, unsigned mask, int nv) {
+  ClipVertex bufA[kMaxPoly + 1], bufB[kMaxPoly + 1];
+  ClipVertex *in = bufA, *out = bufB;
+  std::copy(poly, poly + 3, in);
+  int n = 3;
+  while (mask && n >= 3) {
+    const int plane = std::countr_zero(mask);
+    mask &= mask - 1;
+    const float* P = kPlanes[plane];
+    in[n] = in[0];
+    float dPrev = planeDistance(in[0].c, P);
+    if (!std::isfinite(dPrev)) return 0;
+    int m = 0;
+    for (int i = 1; i <= n; ++i) {
+      const ClipVertex &prev = in[i - 1], &cur = in[i];
+      const float d = planeDistance(cur.c, P);
+      if (!std::isfinite(d)) return 0;
+      bool crosses;
+      if (dPrev >= 0.0f) {
+        out[m++] = prev;
+        crosses = d < 0.0f;
+      } else {
+        crosses = !(d < 0.0f);
+      }
+      if (crosses) {
+        if (m >= kMaxPoly) return 0;
+        const float denom = d - dPrev;
+        ClipVertex& nv_ = out[m++];
+        if (d < 0.0f) {  // leaving: prev inside, cur outside
+          if (!r.clipFromNearer || -d < dPrev) lerpVertex(nv_, d / denom, cur, prev, nv);
+          else lerpVertex(nv_, -dPrev / denom, prev, cur, nv);
+        } else {  // entering: prev outside, cur inside
+          if (!r.clipFromNearer || -dPrev < d) lerpVertex(nv_, -dPrev / denom, prev, cur, nv);
+          else lerpVertex(nv_, d / denom, cur, prev, nv);
+        }
+      }
+      if (m >= kMaxPoly) return 0;
+      dPrev = d;
+    }
+    std::swap(in, out);
+    n = m;
+  }
+  if (n < 3) return 0;
+  std::copy(in, in + n, poly);
   return n;
 }
 
@@ -178,27 +238,34 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
   std::atomic<size_t> clipped{0}, culled{0};
   tbb::parallel_for(size_t(0), in.triangles, [&](size_t t) {
     DenormalScope mode(false);
-    ClipVertex cv[9];
-    bool inside = true;
+    ClipVertex cv[kMaxPoly];
+    const bool clipXY = dev.raster.clip == DeviceProfile::Raster::Clip::DrawModule;
+    unsigned any = 0, all = 0x3f;
     for (int i = 0; i < 3; ++i) {
       const uint32_t idx = in.indices[3 * t + size_t(i)];
       std::memcpy(cv[i].c, in.clip + 4 * size_t(idx), 16);
       for (int k = 0; k < nv; ++k) cv[i].v[k] = in.varyings[size_t(idx) * size_t(nv) + size_t(k)];
-      inside = inside && cv[i].c[2] >= 0.0f && cv[i].c[2] <= cv[i].c[3] && cv[i].c[3] > 0.0f;
+      cv[i].original = true;
+      const unsigned code = outcode(cv[i].c, clipXY);
+      any |= code, all &= code;
     }
-    if (inside) {
+    const bool fusedVp = dev.raster.viewportFma;
+    if (!any) {
       WinVertex w[3];
-      for (int i = 0; i < 3; ++i) w[i] = toWindow(dev, cv[i], nv, sx, sx, sy, sy);
+      for (int i = 0; i < 3; ++i) w[i] = toWindow(fusedVp, cv[i], nv, sx, sx, sy, sy);
       const WinVertex* p[3] = {&w[0], &w[1], &w[2]};
       ok[t] = setupTriangle(dev, fb, p, nv, in.cullBack, uint32_t(t), tris[t]);
       if (!ok[t]) culled.fetch_add(1, std::memory_order_relaxed);
       return;
     }
     clipped.fetch_add(1, std::memory_order_relaxed);
-    const int n = clipNearFar(cv, 3, nv);
+    if (all) return;  // every vertex outside one plane
+    const int n = clipPolygon(dev.raster, cv, any, nv);
     if (n < 3) return;
-    WinVertex w[9];
-    for (int i = 0; i < n; ++i) w[i] = toWindow(dev, cv[i], nv, sx, sx, sy, sy);
+    WinVertex w[kMaxPoly];
+    for (int i = 0; i < n; ++i)
+      w[i] = toWindow(cv[i].original ? fusedVp : dev.raster.clipViewportFma, cv[i], nv, sx, sx, sy, sy);
+    // The polygon as a fan around its first vertex: (0, i, i + 1).
     for (int i = 1; i + 1 < n; ++i) {
       const WinVertex* p[3] = {&w[0], &w[i], &w[i + 1]};
       TriSetup s;

@@ -1,11 +1,16 @@
-// Emulated rasterizer: viewport transform, near/far clipping, sub-pixel snapping, the coverage
+// Emulated rasterizer: clipping, viewport transform, sub-pixel snapping, the coverage
 // (top-left) rule, D32F depth test (less-or-equal, early), plane-equation interpolation of depth
 // and perspective-correct varyings at pixel centres, 2x2 quads with helper pixels, and a tiled,
 // TBB-parallel loop whose output does not depend on the thread count (each tile runs its triangles
 // in submission order). The device profile's `raster` block holds what differs between devices.
 //
 // What the lavapipe profile models (Mesa llvmpipe, read in lp_setup_tri.c, lp_state_setup.c and
-// lp_bld_interp.c, re-implemented here; see docs/DESIGN.md "Rasterizer"):
+// lp_bld_interp.c, and the draw module's draw_pipe_clip.c, re-implemented here; see docs/DESIGN.md
+// "Rasterizer"):
+//   clipping             no guard band: a triangle with a vertex outside x <= w, x >= -w, y <= w,
+//                        y >= -w, z >= 0 or z <= w is clipped plane by plane in that order; a new
+//                        vertex is interpolated from the endpoint nearer the plane, its window
+//                        position computed with separate mul and add; the polygon is fanned (0, i, i+1)
 //   window coordinates  x_w = x_c * (1 / w_c) * sx + tx   (1/w one IEEE division; * sx + tx fused)
 //   snapping             X = rint((x_w - 0.5) * 2^subPixelBits), pixel centres at integer multiples
 //   orientation          area = dx01 * dy20 - dx20 * dy01 on snapped positions; 0 culls; clockwise

@@ -51,8 +51,10 @@ int verifyRaster(const VerifyOptions& opts, std::ostream& out) {
   GBuffer e = gbufferEmu(scene, dev, &st);
   GBuffer g = gbufferVulkan(ctx, scene);
   if (st.raster.trianglesClipped)
-    out << "note: " << st.raster.trianglesClipped
-        << " triangles cross the near/far planes; the emulator's clipper is not yet a model of the device's\n";
+    out << "clipped: " << st.raster.trianglesClipped << " triangles have a vertex outside a clip plane ("
+        << (dev.raster.clip == emu::DeviceProfile::Raster::Clip::DrawModule ? "x/y, near and far: draw-module clipper"
+                                                                             : "near and far: guard band")
+        << ")\n";
   std::vector<UlpTally> t;
   t.push_back({"coverage"});
   t.push_back({"depth"});
