@@ -40,6 +40,13 @@ struct Mask {
   friend Mask operator==(Mask a, Mask b) { return Mask(~(a.v ^ b.v)); }
   friend Mask operator!=(Mask a, Mask b) { return Mask(a.v ^ b.v); }
   bool lane(int i) const { return v[i] != 0; }
+  /// Whether any lane is set: only for skipping work whose every effect is a select on this mask
+  /// (the dialect's IF_ANY), never for per-lane control flow.
+  friend bool anyLane(Mask m) {
+    for (int i = 0; i < N; ++i)
+      if (m.v[i]) return true;
+    return false;
+  }
   // select() between two uniform values gives a lane value.
   friend F32<N> select(Mask m, float a, float b) { return select(m, F32<N>(a), F32<N>(b)); }
   friend U32<N> select(Mask m, uint32_t a, uint32_t b) { return select(m, U32<N>(a), U32<N>(b)); }

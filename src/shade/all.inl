@@ -2,6 +2,8 @@
 // instantiate.h (no include guards on purpose) and by the GLSL entry points.
 #include "shade/prelude.h"
 #include "shade/exact_math.h"
+#include "shade/sampling.h"
+#include "shade/brdf.h"
 #include "shade/verify_kernels.h"
 #include "shade/mip.h"
 #include "shade/gbuffer.h"

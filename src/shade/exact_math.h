@@ -436,6 +436,26 @@ XmSinCos exSinCos(Float x) {
   return XmSinCos(sv, cv);
 }
 
+// sin(2 pi u), cos(2 pi u) for finite u (sample angles): u = k/4 + f exactly (|f| <= 1/8), 2 pi f as
+// a float-float, the same polynomials on |r| <= pi/4, then the quadrant k mod 4. No Payne-Hanek.
+XmSinCos exSinCos2Pi(Float u) {
+  PRECISE Float k = floor(u * 4.0f + 0.5f);
+  PRECISE Float f = u - k * 0.25f;
+  Uint q = Uint(Int(k)) & 3u;
+  XmFF P = xmTwoProduct(f, 6.28318548f);
+  PRECISE Float rl = P.lo + f * -1.74845553e-07f;  // 2 pi - float(2 pi)
+  PRECISE Float rh = P.hi + rl;
+  rl = rl - (rh - P.hi);
+  PRECISE Float s = xmSinPoly(rh, rl);
+  PRECISE Float c = xmCosPoly(rh, rl);
+  Mask swap = (q & 1u) != 0u;
+  PRECISE Float sv = select(swap, c, s);
+  sv = select((q & 2u) != 0u, -sv, sv);
+  PRECISE Float cv = select(swap, s, c);
+  cv = select(((q + 1u) & 2u) != 0u, -cv, cv);
+  return XmSinCos(sv, cv);
+}
+
 Float exSin(Float x) { return exSinCos(x).s; }
 Float exCos(Float x) { return exSinCos(x).c; }
 

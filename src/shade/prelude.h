@@ -6,6 +6,9 @@
 //     constants): float, int, uint. Float literals carry the f suffix (1.0f).
 //   - Only .x/.y/.z/.w and constructors on vectors; no multi-letter swizzles.
 //   - No `if`/`?:`/`while` on a Mask: use select(m, a, b) (a where m). Loops run a uniform count.
+//     IF_ANY(m) { x = select(m, f(...), x); } skips work no lane needs (C++: when no lane of the
+//     vector has m; GLSL: per invocation). Every effect inside must be a select on m, so the result
+//     never depends on which lanes share a vector.
 //   - No raw '/', sqrt, inversesqrt, normalize, exp, log, pow, sin, cos, fma, mix, dot, length in
 //     shared code: the exact-math layer (exact_math.h) and the dialect's own dot/cross/lerp are
 //     the only sources of those. The C++ lane types have no operator/, so a raw '/' fails the build.
@@ -26,6 +29,7 @@
 #define OUT(T) out T
 #define INOUT(T) inout T
 #define INLINE
+#define IF_ANY(m) if (m)
 #define Sampler2D sampler2D
 
 // select(m, a, b): a where m is true, else b. GLSL mix() with a bool selector picks without arithmetic.
@@ -66,6 +70,7 @@ vec3 st_cross(vec3 a, vec3 b) {
 #define OUT(T) T&
 #define INOUT(T) T&
 #define INLINE inline
+#define IF_ANY(m) if (anyLane(m))
 
 using Float2 = ::shadetwin::shade::V2<Float>;
 using Float3 = ::shadetwin::shade::V3<Float>;

@@ -52,6 +52,7 @@ inline float select(bool m, float a, float b) { return m ? a : b; }
 inline uint32_t select(bool m, uint32_t a, uint32_t b) { return m ? a : b; }
 inline int32_t select(bool m, int32_t a, int32_t b) { return m ? a : b; }
 inline bool select(bool m, bool a, bool b) { return m ? a : b; }
+inline bool anyLane(bool m) { return m; }
 inline uint32_t floatBitsToUint(float x) { return __builtin_bit_cast(uint32_t, x); }
 inline int32_t floatBitsToInt(float x) { return __builtin_bit_cast(int32_t, x); }
 inline float uintBitsToFloat(uint32_t x) { return __builtin_bit_cast(float, x); }
