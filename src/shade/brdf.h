@@ -70,7 +70,7 @@ Float3 reflectAbout(Float3 wo, Float3 h, Float oh) {
 }
 
 // A Phong lobe of exponent e about the unit axis a: direction with cos(angle to a) = u^(1/(e+1)),
-// and pdf = (e+1)/(2pi) u^(e/(e+1)).
+// sine from 1 - c without cancellation (oneMinusExp2), and pdf = (e+1)/(2pi) u^(e/(e+1)).
 struct LobeSample {
   Float3 w;
   Float pdf;
@@ -79,8 +79,10 @@ struct LobeSample {
 LobeSample sampleCosineLobe(Float3 a, Float e, Float2 u) {
   PRECISE Float e1 = e + 1.0f;
   PRECISE Float lu = exLog2(u.x);
-  PRECISE Float c = exExp2(exDiv(lu, e1));
-  PRECISE Float s = exSqrt(max(1.0f - c * c, 0.0f));
+  PRECISE Float z = exDiv(lu, e1);
+  PRECISE Float c = exExp2(z);
+  PRECISE Float omc = oneMinusExp2(z);
+  PRECISE Float s = exSqrt(omc * (2.0f - omc));
   Float3 w = basisToWorld(basisAbout(a), sphericalDirection(s, c, u.y));
   PRECISE Float pdf = e1 * kBrdfInvTwoPi * exExp2(exDiv(lu * e, e1));
   return LobeSample(w, pdf);

@@ -49,6 +49,17 @@ Float3 basisToWorld(Basis f, Float3 v) {
 
 Float3 basisToLocal(Basis f, Float3 v) { return Float3(dot(v, f.t), dot(v, f.b), dot(v, f.n)); }
 
+// 1 - 2^z for z <= 0 without cancellation near 0: the polar sine of a narrow lobe comes from it
+// (sin^2 = (1 - c)(1 + c)); with 1 - c taken from a rounded c, a Phong lobe of exponent 10^5
+// would be quantized to a few hundred distinct angles. |z ln 2| < 0.18: Taylor series of
+// -expm1 to degree 8 (next term < 2^-34 relative); else 1 - 2^z (c <= 0.85, little cancellation).
+Float oneMinusExp2(Float z) {
+  PRECISE Float x = z * 0.693147182f;
+  PRECISE Float p = x * (1.0f + x * (0.5f + x * (0.166666672f + x * (0.0416666679f + x * (0.00833333377f +
+                    x * (0.00138888892f + x * (1.98412701e-04f + x * 2.48015876e-05f)))))));
+  return select(z > -0.25f, -p, 1.0f - exExp2(z));
+}
+
 // Unit vector at polar cosine c (sine s) and azimuth 2 pi u about +z.
 Float3 sphericalDirection(Float s, Float c, Float u) {
   XmSinCos p = exSinCos2Pi(u);
