@@ -9,3 +9,4 @@
 #include "shade/gbuffer.h"
 #include "shade/shadow.h"
 #include "shade/shade_mirror.h"
+#include "shade/paraboloid.h"

@@ -23,6 +23,7 @@ struct VerifyOptions {
   uint32_t directions = 16;   // shadow: number of directions (spherical Fibonacci)
   uint32_t shadowSize = 512;  // shadow: map resolution
   std::string technique;      // shade/frame: shading technique (default: the scene's)
+  uint32_t faceSize = 256;    // paraboloid: face size S of the 2S x S atlas
 };
 
 /// Returns the process exit status: 0 when everything is bit-identical, 1 otherwise.
@@ -34,6 +35,9 @@ int verifyRaster(const VerifyOptions& opts, std::ostream& out);
 
 /// Shadow-map passes, emulator vs Vulkan build: every depth value of every direction.
 int verifyShadow(const VerifyOptions& opts, std::ostream& out);
+
+/// Dual-paraboloid atlas of the scene's environment (resampling kernel and its MIP chain), emulator vs Vulkan build.
+int verifyParaboloid(const VerifyOptions& opts, std::ostream& out);
 /// Shading pass of both builds on the same G-buffer (the Vulkan build's, read back): every channel.
 int verifyShade(const VerifyOptions& opts, std::ostream& out);
 /// Whole frames: emulator (G-buffer + shading) vs Vulkan build (G-buffer + shading).

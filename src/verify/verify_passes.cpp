@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include "emu/device_profile.h"
+#include "mips.h"
+#include "render/paraboloid.h"
 #include "render/passes_vk.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -110,6 +112,25 @@ int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
   std::vector<float> v = pass.run(gbufferVulkan(*s.ctx, s.scene));
   out << "technique " << s.scene.technique << ", whole frames (G-buffer + shading) of each build\n";
   return finish("frame", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
+}
+
+int verifyParaboloid(const VerifyOptions& opts, std::ostream& out) {
+  Setup s = setUp(opts, out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
+  const uint32_t S = opts.faceSize;
+  std::vector<float> e = paraboloidAtlasEmu(*env.texture, *s.dev, S);
+  std::vector<float> v = paraboloidAtlasVulkan(*s.ctx, *env.texture, S);
+  out << "environment " << s.scene.environment << " (" << env.width << "x" << env.height << ") -> paraboloid atlas "
+      << 2 * S << "x" << S << "\n";
+  std::vector<UlpTally> t = compareRgba(e, v);
+  // The MIP chain of the (emulator's) atlas, shared downsampling kernel on both sides.
+  const auto ce = mipChainCpu(e, 2 * S, S, 1, 8), cv = mipChainGpu(*s.ctx, e, 2 * S, S, 1);
+  UlpTally mips{"mip levels 1.."};
+  for (size_t l = 1; l < ce.size(); ++l)
+    for (size_t i = 0; i < ce[l].size(); ++i) mips.add(ce[l][i], cv[l][i]);
+  t.push_back(mips);
+  return finish("paraboloid", printTallies(t, out), *s.ctx, opts, out);
 }
 
 }  // namespace shadetwin
