@@ -57,11 +57,24 @@ struct CameraRays {
 };
 CameraRays cameraRays(const Scene& scene);
 
-/// Emulated deferred shading pass (technique "mirror"): compute stage, 8 lanes per device vector
-/// (SIMD build of shade/shade_mirror.h), TBB over blocks. Returns RGBA floats per pixel.
+/// Emulated deferred shading pass: compute stage, 8 lanes per device vector (SIMD build of the
+/// technique's shared source), TBB over blocks. Returns RGBA floats per pixel. `env` is the
+/// technique's environment texture: the equirectangular map for "mirror" (shade/shade_mirror.h),
+/// the dual-paraboloid atlas for "fis" (shade/shade_fis.h; see fisAtlasEmu).
 std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev);
 /// Same, into `out` (resized to 4 floats per pixel, storage reused).
 void shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev,
               std::vector<float>& out);
+
+/// BRDF parameters of a material for the shared samplers (shade/brdf.h); throws for BRDFs the
+/// technique cannot sample (mirror; lafortune until scenes carry its lobes), naming the material.
+struct BrdfGpu {
+  uint32_t kind;
+  float e, ax, ay;
+};
+BrdfGpu brdfOf(const Material& m);
+
+/// log2(K w h / N) of the FIS level formula for the scene's settings (w h = S^2 texels per face).
+float fisLevelConstant(const Scene& scene);
 
 }  // namespace shadetwin

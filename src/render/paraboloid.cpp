@@ -95,4 +95,9 @@ emu::Texture paraboloidTexture(const std::vector<float>& level0, uint32_t faceSi
   return packTexture(emu::Format::RGBA32F, 2 * faceSize, faceSize, 1, chain);
 }
 
+emu::Texture paraboloidTextureVulkan(vk::Context& ctx, const emu::Texture& env, uint32_t faceSize) {
+  const auto chain = mipChainGpu(ctx, paraboloidAtlasVulkan(ctx, env, faceSize), 2 * faceSize, faceSize, 1);
+  return packTexture(emu::Format::RGBA32F, 2 * faceSize, faceSize, 1, chain);
+}
+
 }  // namespace shadetwin

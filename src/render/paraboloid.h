@@ -22,4 +22,7 @@ std::vector<float> paraboloidAtlasVulkan(vk::Context& ctx, const emu::Texture& e
 /// Level 0 plus its MIP chain (shared kernel, SIMD build) packed as an RGBA32F texture.
 emu::Texture paraboloidTexture(const std::vector<float>& level0, uint32_t faceSize);
 
+/// The whole atlas built by the Vulkan device: resampling kernel and MIP chain on the GPU.
+emu::Texture paraboloidTextureVulkan(vk::Context& ctx, const emu::Texture& env, uint32_t faceSize);
+
 }  // namespace shadetwin

@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -123,8 +125,84 @@ std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const emu::Tex
   return out;
 }
 
+BrdfGpu brdfOf(const Material& m) {
+  if (m.brdf == "phong") return {shade::scalar::kBrdfPhong, m.exponent, 0, 0};
+  if (m.brdf == "blinn") return {shade::scalar::kBrdfBlinn, m.exponent, 0, 0};
+  if (m.brdf == "ward") return {shade::scalar::kBrdfWard, 0, m.roughness, m.roughnessY};
+  if (m.brdf == "ggx") return {shade::scalar::kBrdfGgx, 0, m.roughness, m.roughness};
+  throw std::invalid_argument("material '" + m.name + "': BRDF '" + m.brdf +
+                              "' cannot be importance-sampled by fis (phong, blinn, ward or ggx)");
+}
+
+float fisLevelConstant(const Scene& scene) {
+  const double S = scene.fisFaceSize;
+  return float(std::log2(double(scene.fisK) * S * S / double(scene.fisSamples)));
+}
+
+namespace {
+void shadeFisEmu(const Scene& scene, const GBuffer& g, const emu::Texture& atlas, const emu::DeviceProfile& dev,
+                 std::vector<float>& out) {
+  using F = emu::F32<8>;
+  using U = emu::U32<8>;
+  using V3 = shade::V3<F>;
+  using V4 = shade::V4<F>;
+  const size_t n = size_t(g.width) * g.height;
+  out.resize(4 * n);
+  const CameraRays cam = cameraRays(scene);
+  shade::Sampler2D s;
+  s.tex = &atlas;
+  s.dev = &dev;
+  s.desc.addressU = emu::AddressMode::ClampToEdge;
+  s.desc.addressV = emu::AddressMode::ClampToEdge;
+  const float maxLod = float(atlas.levelCount() - 1), levelC = fisLevelConstant(scene);
+  const float invW = 1.0f / float(g.width), invH = 1.0f / float(g.height);
+  std::vector<BrdfGpu> brdfs;
+  for (const Material& m : scene.materials) brdfs.push_back(brdfOf(m));
+  if (brdfs.empty()) brdfs.push_back(brdfOf(Material{}));
+  const size_t blocks = (n + 7) / 8;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 16), [&](const tbb::blocked_range<size_t>& r) {
+    emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
+    for (size_t b = r.begin(); b != r.end(); ++b) {
+      V4 g0, g1, g2;
+      V3 dif, spec;
+      F px, py;
+      shade::x8::BrdfParams bp{};
+      U kind(0u);
+      for (int l = 0; l < 8; ++l) {
+        const size_t i = std::min(b * 8 + size_t(l), n - 1);
+        const float* t = g.texels.data() + i * kGbufFloats;
+        g0.x.set(l, t[0]), g0.y.set(l, t[1]), g0.z.set(l, t[2]), g0.w.set(l, t[3]);
+        g1.x.set(l, t[4]), g1.y.set(l, t[5]), g1.z.set(l, t[6]), g1.w.set(l, t[7]);
+        g2.x.set(l, t[8]), g2.y.set(l, t[9]), g2.z.set(l, t[10]), g2.w.set(l, t[11]);
+        const uint32_t slot = shade::scalar::materialSlot(t[3], uint32_t(brdfs.size()));
+        const Material& m = scene.materials.empty() ? Material{} : scene.materials[slot];
+        dif.x.set(l, m.diffuse[0]), dif.y.set(l, m.diffuse[1]), dif.z.set(l, m.diffuse[2]);
+        spec.x.set(l, m.specular[0]), spec.y.set(l, m.specular[1]), spec.z.set(l, m.specular[2]);
+        kind.set(l, brdfs[slot].kind);
+        bp.e.set(l, brdfs[slot].e), bp.ax.set(l, brdfs[slot].ax), bp.ay.set(l, brdfs[slot].ay);
+        px.set(l, float(i % g.width));
+        py.set(l, float(i / g.width));
+      }
+      bp.kind = kind;
+      const V3 zero(F(0.0f), F(0.0f), F(0.0f));
+      bp.c0 = zero, bp.c1 = zero, bp.n0 = F(1.0f), bp.n1 = F(1.0f), bp.rho0 = F(0.0f), bp.rho1 = F(0.0f);
+      V3 ray = shade::x8::cameraRay(V3(F(cam.fwd[0]), F(cam.fwd[1]), F(cam.fwd[2])),
+                                    V3(F(cam.right[0]), F(cam.right[1]), F(cam.right[2])),
+                                    V3(F(cam.down[0]), F(cam.down[1]), F(cam.down[2])), px, py, F(invW), F(invH));
+      V4 c = shade::x8::shadeFis(s, F(maxLod), F(levelC), scene.fisSamples, F(scene.environmentIntensity), g0, g1, g2,
+                                 V3(F(cam.eye[0]), F(cam.eye[1]), F(cam.eye[2])), ray, dif, spec, bp);
+      for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
+        float* o = &out[4 * (b * 8 + size_t(l))];
+        o[0] = c.x[l], o[1] = c.y[l], o[2] = c.z[l], o[3] = c.w[l];
+      }
+    }
+  });
+}
+}  // namespace
+
 void shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev,
               std::vector<float>& out) {
+  if (scene.technique == "fis") return shadeFisEmu(scene, g, env, dev, out);
   using F = emu::F32<8>;
   using V3 = shade::V3<F>;
   using V4 = shade::V4<F>;

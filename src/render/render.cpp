@@ -1,5 +1,9 @@
 #include "render/render.h"
 
+#include <memory>
+
+#include "render/paraboloid.h"
+
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -81,18 +85,31 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     t0 = Clock::now();
     GBuffer g = gbufferEmu(scene, dev, &gs);
     const double tGbuf = ms(t0);
+ t0 = Clock::now();
+    std::unique_ptr<emu::Texture> atlas;  // fis: the dual-paraboloid atlas, resampled from the environment
+    if (scene.technique == "fis")
+      atlas = std::make_unique<emu::Texture>(
+          paraboloidTexture(paraboloidAtlasEmu(*env.texture, dev, scene.fisFaceSize), scene.fisFaceSize));
+    const double tAtlas = ms(t0);
     t0 = Clock::now();
-    image = shadeEmu(scene, g, *env.texture, dev);
+    image = shadeEmu(scene, g, atlas ? *atlas : *env.texture, dev);
     const double tShade = ms(t0);
+    if (atlas)
+      passes << "  paraboloid atlas (emu)   " << std::setw(8) << tAtlas << " ms  (" << 2 * scene.fisFaceSize << "x"
+             << scene.fisFaceSize << " + MIP chain)\n";
     passes << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
            << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
            << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
-    passes << "  shading (emu, " << scene.technique << ")    " << std::setw(8) << tShade << " ms\n";
+    passes << "  shading (emu, " << scene.technique;
+    if (scene.technique == "fis") passes << ", " << scene.fisSamples << " samples";
+    passes << ")    " << std::setw(8) << tShade << " ms\n";
   } else {
     t0 = Clock::now();
     vk::Context ctx;
     GbufferPassVk gpass(ctx, scene);
-    ShadePassVk spass(ctx, scene, *env.texture);
+    std::unique_ptr<emu::Texture> atlas;
+    if (scene.technique == "fis") atlas = std::make_unique<emu::Texture>(paraboloidTextureVulkan(ctx, *env.texture, scene.fisFaceSize));
+    ShadePassVk spass(ctx, scene, atlas ? *atlas : *env.texture);
     const double tSetup = ms(t0);
     GBuffer g = gpass.run();
     image = spass.run(g);

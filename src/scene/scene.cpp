@@ -176,7 +176,7 @@ Scene loadScene(const std::string& path) {
     throw SceneError(path + ": not valid JSON: " + e.what());
   }
   Reader R{path};
-  R.keys(j, "", {"image", "camera", "environment", "technique", "materials", "objects", "description"});
+  R.keys(j, "", {"image", "camera", "environment", "technique", "fis", "materials", "objects", "description"});
   const fs::path dir = fs::path(path).parent_path();
   const fs::path root = fs::weakly_canonical(dir / "..");
   Scene s;
@@ -216,7 +216,16 @@ Scene loadScene(const std::string& path) {
     s.environmentIntensity = R.number(e, "environment.intensity", 1, 0, 1e9f);
   }
   s.technique = R.string(j, "technique", "mirror");
-  if (s.technique != "mirror") R.fail("technique", "unknown technique '" + s.technique + "' (expected: mirror)");
+  if (s.technique != "mirror" && s.technique != "fis")
+    R.fail("technique", "unknown technique '" + s.technique + "' (expected: mirror or fis)");
+  if (j.contains("fis")) {
+    const json& f = j["fis"];
+    if (!f.is_object()) R.fail("fis", "expected an object with samples, k, face_size");
+    R.keys(f, "fis", {"samples", "k", "face_size"});
+    s.fisSamples = uint32_t(R.number(f, "fis.samples", 40, 1, 4096));
+    s.fisK = R.number(f, "fis.k", 4, 1e-3f, 1e6f);
+    s.fisFaceSize = uint32_t(R.number(f, "fis.face_size", 256, 4, 8192));
+  }
 
   std::map<std::string, uint32_t> matIndex;
   if (j.contains("materials")) {

@@ -52,7 +52,12 @@ struct Scene {
   Camera camera;
   std::string environment;        // resolved path of the EXR/HDR
   float environmentIntensity = 1.0f;
-  std::string technique = "mirror";  // shading technique (simple lookup until FIS lands)
+  std::string technique = "mirror";  // shading technique: mirror (simple lookup) or fis
+  // Filtered importance sampling ("fis" block): samples per pixel, the level constant K of
+  // l = max(log4(K w h / (N p r)), 0), and the face size S of the 2S x S paraboloid atlas.
+  uint32_t fisSamples = 40;
+  float fisK = 4.0f;
+  uint32_t fisFaceSize = 256;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Object> objects;

@@ -10,3 +10,4 @@
 #include "shade/shadow.h"
 #include "shade/shade_mirror.h"
 #include "shade/paraboloid.h"
+#include "shade/shade_fis.h"

@@ -1,6 +1,7 @@
 // verify shadow / shade / frame: the shadow-map passes, the shading pass (both builds on the same
 // G-buffer, the Vulkan build's) and whole frames, emulator vs Vulkan build, bit for bit.
 #include <cstring>
+#include <memory>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -29,8 +30,8 @@ Setup setUp(const VerifyOptions& opts, std::ostream& out) {
   if (opts.width) s.scene.width = opts.width;
   if (opts.height) s.scene.height = opts.height;
   if (!opts.technique.empty()) s.scene.technique = opts.technique;
-  if (s.scene.technique != "mirror")
-    throw std::invalid_argument("--technique " + s.scene.technique + ": only 'mirror' is implemented so far");
+  if (s.scene.technique != "mirror" && s.scene.technique != "fis")
+    throw std::invalid_argument("--technique " + s.scene.technique + ": expected mirror or fis");
   vk::ContextOptions co;
   co.device = opts.device;
   co.validation = opts.validate;
@@ -96,8 +97,14 @@ int verifyShade(const VerifyOptions& opts, std::ostream& out) {
   std::ostringstream quiet;
   EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
   GBuffer g = gbufferVulkan(*s.ctx, s.scene);  // one G-buffer for both shading passes
-  std::vector<float> e = shadeEmu(s.scene, g, *env.texture, *s.dev);
-  ShadePassVk pass(*s.ctx, s.scene, *env.texture);
+  // The technique's environment texture, the same for both passes (fis: the emulator's atlas).
+  std::unique_ptr<emu::Texture> atlas;
+  if (s.scene.technique == "fis")
+    atlas = std::make_unique<emu::Texture>(paraboloidTexture(paraboloidAtlasEmu(*env.texture, *s.dev, s.scene.fisFaceSize),
+                                                             s.scene.fisFaceSize));
+  const emu::Texture& tex = atlas ? *atlas : *env.texture;
+  std::vector<float> e = shadeEmu(s.scene, g, tex, *s.dev);
+  ShadePassVk pass(*s.ctx, s.scene, tex);
   std::vector<float> v = pass.run(g);
   out << "technique " << s.scene.technique << ", shading the Vulkan build's G-buffer in both builds\n";
   return finish("shade", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
@@ -107,8 +114,15 @@ int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
   Setup s = setUp(opts, out);
   std::ostringstream quiet;
   EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
-  std::vector<float> e = shadeEmu(s.scene, gbufferEmu(s.scene, *s.dev), *env.texture, *s.dev);
-  ShadePassVk pass(*s.ctx, s.scene, *env.texture);
+  // Each build makes its own technique texture (fis: the atlas by the resampling kernel + MIP chain).
+  std::unique_ptr<emu::Texture> atlasE, atlasV;
+  if (s.scene.technique == "fis") {
+    atlasE = std::make_unique<emu::Texture>(paraboloidTexture(paraboloidAtlasEmu(*env.texture, *s.dev, s.scene.fisFaceSize),
+                                                              s.scene.fisFaceSize));
+    atlasV = std::make_unique<emu::Texture>(paraboloidTextureVulkan(*s.ctx, *env.texture, s.scene.fisFaceSize));
+  }
+  std::vector<float> e = shadeEmu(s.scene, gbufferEmu(s.scene, *s.dev), atlasE ? *atlasE : *env.texture, *s.dev);
+  ShadePassVk pass(*s.ctx, s.scene, atlasV ? *atlasV : *env.texture);
   std::vector<float> v = pass.run(gbufferVulkan(*s.ctx, s.scene));
   out << "technique " << s.scene.technique << ", whole frames (G-buffer + shading) of each build\n";
   return finish("frame", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);

@@ -1,0 +1,55 @@
+// Filtered importance sampling (Colbert & Krivanek, "Real-time Shading with Filtered Importance
+// Sampling", EGSR 2008 / GPU Gems 3 ch. 20), the deferred shading pass of technique "fis".
+//
+// Glossy term: N deterministic samples per pixel, the same Hammersley set everywhere (points i of
+// N, shade/sampling.h), drawn from the pixel's BRDF (shade/brdf.h) in its shading frame. Each
+// sample reads the dual-paraboloid atlas (shade/paraboloid.h) with trilinear textureLod at
+//   l = max(1/2 log2(K w h / (N p r(z))), 0) = max(1/2 (log2(K w h / N) - log2(p r(z))), 0),
+// the level whose texel solid angle r(z)/(w h 4^-l) matches the sample's share 1/(N p) of the
+// sphere, times K (paper eq. 7-8: K = 4 is its "+1" level bias; w h = S^2 texels per face). The
+// estimate is (1/N) sum_i L(wi) weight_i, weight_i = fs cos / p (shade/brdf.h), times ks.
+// Diffuse term: kd * E(n) / pi; until the SH-irradiance item lands, E(n)/pi is approximated by a
+// coarse level of the atlas along n (levels maxLod - 1), as the mirror technique does.
+//
+// Background pixels (G0.w = 0) show the atlas along the camera ray at level 0.
+
+struct FisFrame {
+  Basis basis;  // world shading frame: t, b, n
+  Float3 wo;    // view direction in it
+};
+
+// Shading frame from the G-buffer normal and tangent (Gram-Schmidt; handedness from G0.w's sign is
+// irrelevant to these isotropic-or-aligned lobes: b = n x t).
+FisFrame fisFrame(Float3 nIn, Float3 tIn, Float3 v) {
+  Float3 n = exNormalize(nIn);
+  PRECISE Float3 t = tIn - n * dot(n, tIn);
+  t = exNormalize(select(dot(t, t) > 1.0e-12f, t, basisAbout(n).t));
+  Float3 b = cross(n, t);
+  Basis B = Basis(t, b, n);
+  return FisFrame(B, basisToLocal(B, v));
+}
+
+Float4 shadeFis(Sampler2D atlas, Float maxLod, Float log2KwhOverN, uint sampleCount, Float intensity, Float4 g0,
+                Float4 g1, Float4 g2, Float3 eye, Float3 ray, Float3 diffuse, Float3 specular, BrdfParams brdf) {
+  Mask geometry = g0.w != 0.0f;
+  Float3 p = Float3(g0.x, g0.y, g0.z);
+  Float3 v = exNormalize(eye - p);
+  FisFrame F = fisFrame(Float3(g1.x, g1.y, g1.z), Float3(g2.x, g2.y, g2.z), v);
+  PRECISE Float3 sum = Float3(0.0f, 0.0f, 0.0f);
+  for (uint i = 0u; i < sampleCount; i++) {
+    Float2 u = hammersley(Uint(i), Uint(sampleCount));
+    BrdfSample s = sampleBrdf(brdf, F.wo, u);
+    Float3 wi = basisToWorld(F.basis, s.wi);
+    PRECISE Float l = 0.5f * (log2KwhOverN - exLog2(s.pdf * paraboloidJacobian(wi.z)));
+    l = clamp(l, 0.0f, maxLod);  // pdf = 0 (a lost sample, weight 0) gives +inf: the coarsest level
+    Float4 L = textureLod(atlas, paraboloidUv(wi), l);
+    sum = sum + Float3(L.x, L.y, L.z) * s.weight;
+  }
+  PRECISE Float invN = exDiv(1.0f, Float(sampleCount));
+  Float4 irr = textureLod(atlas, paraboloidUv(F.basis.n), max(maxLod - 1.0f, 0.0f));
+  PRECISE Float3 c = sum * invN * specular + Float3(irr.x, irr.y, irr.z) * diffuse;
+  Float4 bg = textureLod(atlas, paraboloidUv(ray), 0.0f);
+  c = select(geometry, c, Float3(bg.x, bg.y, bg.z));
+  c = c * intensity;
+  return Float4(c.x, c.y, c.z, 1.0f);
+}

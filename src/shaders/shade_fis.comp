@@ -1,0 +1,32 @@
+#version 450
+// Deferred shading pass (technique "fis"), compute stage: thin entry point around shade/shade_fis.h.
+// One invocation per pixel, row-major, local size 64; tail invocations re-shade the last pixel (the
+// emulator's tail lanes do the same, so the 8-invocation vectors hold the same pixels).
+#extension GL_GOOGLE_include_directive : require
+#include "shade/all.inl"
+
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) uniform sampler2D atlas;
+struct GbufFis { vec4 g0; vec4 g1; vec4 g2; };  // render/shade_vk.cpp
+layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufFis gbuf[]; };
+struct FisMaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; };  // render/shade_vk.cpp
+layout(std430, set = 0, binding = 2) readonly buffer Materials { FisMaterialGpu materials[]; };
+layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
+layout(push_constant) uniform Push {
+  vec4 eye, fwd, right, down;
+  float invW, invH, maxLod, intensity;
+  uint width, count, materialCount, sampleCount;
+  float levelConstant, pad0, pad1, pad2;
+} pc;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  uint p = min(i, pc.count - 1u);
+  GbufFis g = gbuf[p];
+  FisMaterialGpu m = materials[materialSlot(g.g0.w, pc.materialCount)];
+  BrdfParams bp = BrdfParams(m.kind.x, m.brdf.x, m.brdf.y, m.brdf.z, vec3(0.0f), 1.0f, 0.0f, vec3(0.0f), 1.0f, 0.0f);
+  vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
+  vec4 c = shadeFis(atlas, pc.maxLod, pc.levelConstant, pc.sampleCount, pc.intensity, g.g0, g.g1, g.g2, pc.eye.xyz, ray,
+                    m.diffuse.xyz, m.specular.xyz, bp);
+  if (i < pc.count) color[i] = c;
+}
