@@ -144,13 +144,13 @@ int clipPolygon(const DeviceProfile::Raster& r, ClipVertex* poly, unsigned mask,
       if (crosses) {
         if (m >= kMaxPoly) return 0;
         const float denom = d - dPrev;
-        ClipVertex& nv_ = out[m++];
+        ClipVertex& made = out[m++];
         if (d < 0.0f) {  // leaving: prev inside, cur outside
-          if (!r.clipFromNearer || -d < dPrev) lerpVertex(nv_, d / denom, cur, prev, nv);
-          else lerpVertex(nv_, -dPrev / denom, prev, cur, nv);
+          if (!r.clipFromNearer || -d < dPrev) lerpVertex(made, d / denom, cur, prev, nv);
+          else lerpVertex(made, -dPrev / denom, prev, cur, nv);
         } else {  // entering: prev outside, cur inside
-          if (!r.clipFromNearer || -dPrev < d) lerpVertex(nv_, -dPrev / denom, prev, cur, nv);
-          else lerpVertex(nv_, d / denom, cur, prev, nv);
+          if (!r.clipFromNearer || -dPrev < d) lerpVertex(made, -dPrev / denom, prev, cur, nv);
+          else lerpVertex(made, d / denom, cur, prev, nv);
         }
       }
       if (m >= kMaxPoly) return 0;

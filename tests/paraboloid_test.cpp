@@ -24,10 +24,6 @@ struct D3 {
 D3 dirOf(const V3f& v) { return {v.x, v.y, v.z}; }
 double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-D3 unit(D3 a) {
-  const double l = std::sqrt(dot(a, a));
-  return {a.x / l, a.y / l, a.z / l};
-}
 // Solid angle of the spherical triangle (a, b, c) (Van Oosterom & Strackee 1983).
 double triangleSolidAngle(D3 a, D3 b, D3 c) {
   return 2 * std::atan2(std::fabs(dot(a, cross(b, c))), 1 + dot(a, b) + dot(b, c) + dot(c, a));

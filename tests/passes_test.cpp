@@ -78,8 +78,7 @@ std::vector<float> fisImage(shadetwin::Scene& s, uint32_t samples) {
   std::ostringstream log;
   shadetwin::EnvironmentMap env = shadetwin::loadEnvironment(s.environment, log);
   s.fisSamples = samples;
-  const emu::Texture atlas = shadetwin::paraboloidTexture(shadetwin::paraboloidAtlasEmu(*env.texture, dev(), s.fisFaceSize),
-                                                          s.fisFaceSize);
+  const emu::Texture atlas = shadetwin::paraboloidTextureEmu(*env.texture, dev(), s.fisFaceSize);
   return shadetwin::shadeEmu(s, shadetwin::gbufferEmu(s, dev()), atlas, dev());
 }
 }  // namespace

@@ -11,6 +11,7 @@
 #include "emu/fpenv.h"
 #include "mips.h"
 #include "shade/instantiate.h"
+#include "render/passes_vk.h"
 #include "vk/context.h"
 
 namespace shadetwin {
@@ -30,15 +31,6 @@ void checkInputs(const emu::Texture& env, uint32_t faceSize) {
     throw std::invalid_argument("paraboloid atlas: face size " + std::to_string(faceSize) + " outside [4, 8192]");
 }
 
-VkSamplerCreateInfo envSampler() {
-  VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  si.magFilter = si.minFilter = VK_FILTER_LINEAR;
-  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  si.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  si.maxLod = 1000.0f;
-  return si;
-}
 }  // namespace
 
 std::vector<float> paraboloidAtlasEmu(const emu::Texture& env, const emu::DeviceProfile& dev, uint32_t faceSize) {
@@ -77,7 +69,7 @@ std::vector<float> paraboloidAtlasVulkan(vk::Context& ctx, const emu::Texture& e
   checkInputs(env, faceSize);
   const size_t n = 2 * size_t(faceSize) * faceSize;
   vk::Image img(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, env.width(), env.height(), 1, env.levels(), 16, VK_IMAGE_VIEW_TYPE_2D);
-  vk::Sampler sampler(ctx, envSampler());
+  vk::Sampler sampler(ctx, environmentSamplerInfo(true));
   vk::Buffer out(ctx, n * 16);
   static constexpr VkDescriptorType kLayout[2] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   vk::Kernel kernel(ctx, vk::Stage::Compute, kSpv_paraboloid_resample_comp, kLayout, sizeof(ResamplePush));
@@ -90,8 +82,8 @@ std::vector<float> paraboloidAtlasVulkan(vk::Context& ctx, const emu::Texture& e
   return texels;
 }
 
-emu::Texture paraboloidTexture(const std::vector<float>& level0, uint32_t faceSize) {
-  const auto chain = mipChainCpu(level0, 2 * faceSize, faceSize, 1, 8);
+emu::Texture paraboloidTextureEmu(const emu::Texture& env, const emu::DeviceProfile& dev, uint32_t faceSize) {
+  const auto chain = mipChainCpu(paraboloidAtlasEmu(env, dev, faceSize), 2 * faceSize, faceSize, 1, 8);
   return packTexture(emu::Format::RGBA32F, 2 * faceSize, faceSize, 1, chain);
 }
 

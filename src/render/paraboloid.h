@@ -19,10 +19,10 @@ std::vector<float> paraboloidAtlasEmu(const emu::Texture& env, const emu::Device
 /// The same kernel (src/shaders/paraboloid_resample.comp) on a Vulkan device.
 std::vector<float> paraboloidAtlasVulkan(vk::Context& ctx, const emu::Texture& env, uint32_t faceSize);
 
-/// Level 0 plus its MIP chain (shared kernel, SIMD build) packed as an RGBA32F texture.
-emu::Texture paraboloidTexture(const std::vector<float>& level0, uint32_t faceSize);
+/// The whole atlas (level 0 and its MIP chain, RGBA32F) built by the emulator (SIMD build) ...
+emu::Texture paraboloidTextureEmu(const emu::Texture& env, const emu::DeviceProfile& dev, uint32_t faceSize);
 
-/// The whole atlas built by the Vulkan device: resampling kernel and MIP chain on the GPU.
+/// ... and by the Vulkan device: resampling kernel and MIP chain on the GPU (the same bits).
 emu::Texture paraboloidTextureVulkan(vk::Context& ctx, const emu::Texture& env, uint32_t faceSize);
 
 }  // namespace shadetwin

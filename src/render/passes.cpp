@@ -140,57 +140,58 @@ float fisLevelConstant(const Scene& scene) {
 }
 
 namespace {
-void shadeFisEmu(const Scene& scene, const GBuffer& g, const emu::Texture& atlas, const emu::DeviceProfile& dev,
-                 std::vector<float>& out) {
-  using F = emu::F32<8>;
-  using U = emu::U32<8>;
-  using V3 = shade::V3<F>;
-  using V4 = shade::V4<F>;
+using F8 = emu::F32<8>;
+using V3x = shade::V3<F8>;
+using V4x = shade::V4<F8>;
+
+// One device vector of a shading pass: 8 consecutive pixels of the G-buffer (tail lanes repeat the
+// last pixel, as the GPU's tail invocations do), their material slots and camera rays.
+struct PixelBlock {
+  V4x g0, g1, g2;
+  V3x eye, ray;
+  uint32_t slot[8];
+};
+
+V3x splat(const float v[3]) { return V3x(F8(v[0]), F8(v[1]), F8(v[2])); }
+
+// Per-lane RGB of each lane's material: pick(material) -> Vec3.
+template <class Pick>
+V3x materialLanes(const PixelBlock& p, const std::vector<Material>& mats, Pick pick) {
+  V3x r;
+  for (int l = 0; l < 8; ++l) {
+    const Vec3& c = pick(mats[p.slot[l]]);
+    r.x.set(l, c[0]), r.y.set(l, c[1]), r.z.set(l, c[2]);
+  }
+  return r;
+}
+
+// The compute-stage loop shared by the techniques: TBB over blocks of 8 pixels in the device's
+// denormal mode; shade(block) returns the 4 output floats of each lane.
+template <class Shade>
+void shadePixelBlocks(const Scene& scene, const GBuffer& g, const emu::DeviceProfile& dev, size_t grain,
+                      uint32_t materialCount, std::vector<float>& out, Shade shade) {
   const size_t n = size_t(g.width) * g.height;
   out.resize(4 * n);
   const CameraRays cam = cameraRays(scene);
-  shade::Sampler2D s;
-  s.tex = &atlas;
-  s.dev = &dev;
-  s.desc.addressU = emu::AddressMode::ClampToEdge;
-  s.desc.addressV = emu::AddressMode::ClampToEdge;
-  const float maxLod = float(atlas.levelCount() - 1), levelC = fisLevelConstant(scene);
-  const float invW = 1.0f / float(g.width), invH = 1.0f / float(g.height);
-  std::vector<BrdfGpu> brdfs;
-  for (const Material& m : scene.materials) brdfs.push_back(brdfOf(m));
-  if (brdfs.empty()) brdfs.push_back(brdfOf(Material{}));
-  const size_t blocks = (n + 7) / 8;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 16), [&](const tbb::blocked_range<size_t>& r) {
+  const F8 invW(1.0f / float(g.width)), invH(1.0f / float(g.height));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + 7) / 8, grain), [&](const tbb::blocked_range<size_t>& r) {
     emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
     for (size_t b = r.begin(); b != r.end(); ++b) {
-      V4 g0, g1, g2;
-      V3 dif, spec;
-      F px, py;
-      shade::x8::BrdfParams bp{};
-      U kind(0u);
+      PixelBlock p;
+      F8 px, py;
       for (int l = 0; l < 8; ++l) {
         const size_t i = std::min(b * 8 + size_t(l), n - 1);
         const float* t = g.texels.data() + i * kGbufFloats;
-        g0.x.set(l, t[0]), g0.y.set(l, t[1]), g0.z.set(l, t[2]), g0.w.set(l, t[3]);
-        g1.x.set(l, t[4]), g1.y.set(l, t[5]), g1.z.set(l, t[6]), g1.w.set(l, t[7]);
-        g2.x.set(l, t[8]), g2.y.set(l, t[9]), g2.z.set(l, t[10]), g2.w.set(l, t[11]);
-        const uint32_t slot = shade::scalar::materialSlot(t[3], uint32_t(brdfs.size()));
-        const Material& m = scene.materials.empty() ? Material{} : scene.materials[slot];
-        dif.x.set(l, m.diffuse[0]), dif.y.set(l, m.diffuse[1]), dif.z.set(l, m.diffuse[2]);
-        spec.x.set(l, m.specular[0]), spec.y.set(l, m.specular[1]), spec.z.set(l, m.specular[2]);
-        kind.set(l, brdfs[slot].kind);
-        bp.e.set(l, brdfs[slot].e), bp.ax.set(l, brdfs[slot].ax), bp.ay.set(l, brdfs[slot].ay);
+        p.g0.x.set(l, t[0]), p.g0.y.set(l, t[1]), p.g0.z.set(l, t[2]), p.g0.w.set(l, t[3]);
+        p.g1.x.set(l, t[4]), p.g1.y.set(l, t[5]), p.g1.z.set(l, t[6]), p.g1.w.set(l, t[7]);
+        p.g2.x.set(l, t[8]), p.g2.y.set(l, t[9]), p.g2.z.set(l, t[10]), p.g2.w.set(l, t[11]);
+        p.slot[l] = shade::scalar::materialSlot(t[3], materialCount);
         px.set(l, float(i % g.width));
         py.set(l, float(i / g.width));
       }
-      bp.kind = kind;
-      const V3 zero(F(0.0f), F(0.0f), F(0.0f));
-      bp.c0 = zero, bp.c1 = zero, bp.n0 = F(1.0f), bp.n1 = F(1.0f), bp.rho0 = F(0.0f), bp.rho1 = F(0.0f);
-      V3 ray = shade::x8::cameraRay(V3(F(cam.fwd[0]), F(cam.fwd[1]), F(cam.fwd[2])),
-                                    V3(F(cam.right[0]), F(cam.right[1]), F(cam.right[2])),
-                                    V3(F(cam.down[0]), F(cam.down[1]), F(cam.down[2])), px, py, F(invW), F(invH));
-      V4 c = shade::x8::shadeFis(s, F(maxLod), F(levelC), scene.fisSamples, F(scene.environmentIntensity), g0, g1, g2,
-                                 V3(F(cam.eye[0]), F(cam.eye[1]), F(cam.eye[2])), ray, dif, spec, bp);
+      p.eye = splat(cam.eye);
+      p.ray = shade::x8::cameraRay(splat(cam.fwd), splat(cam.right), splat(cam.down), px, py, invW, invH);
+      const V4x c = shade(p);
       for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
         float* o = &out[4 * (b * 8 + size_t(l))];
         o[0] = c.x[l], o[1] = c.y[l], o[2] = c.z[l], o[3] = c.w[l];
@@ -198,52 +199,54 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const emu::Texture& atlas
     }
   });
 }
+
+std::vector<Material> materialSlots(const Scene& scene) {
+  return scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
+}
+
+void shadeFisEmu(const Scene& scene, const GBuffer& g, const emu::Texture& atlas, const emu::DeviceProfile& dev,
+                 std::vector<float>& out) {
+  shade::Sampler2D s;
+  s.tex = &atlas;
+  s.dev = &dev;
+  s.desc.addressU = emu::AddressMode::ClampToEdge;
+  s.desc.addressV = emu::AddressMode::ClampToEdge;
+  const F8 maxLod(float(atlas.levelCount() - 1)), levelC(fisLevelConstant(scene)), intensity(scene.environmentIntensity);
+  const std::vector<Material> mats = materialSlots(scene);
+  std::vector<BrdfGpu> brdfs;
+  for (const Material& m : mats) brdfs.push_back(brdfOf(m));
+  shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
+    shade::x8::BrdfParams bp{};
+    emu::U32<8> kind(0u);
+    for (int l = 0; l < 8; ++l) {
+      const BrdfGpu& q = brdfs[p.slot[l]];
+      kind.set(l, q.kind);
+      bp.e.set(l, q.e), bp.ax.set(l, q.ax), bp.ay.set(l, q.ay);
+    }
+    bp.kind = kind;
+    const V3x zero(F8(0.0f), F8(0.0f), F8(0.0f));
+    bp.c0 = zero, bp.c1 = zero, bp.n0 = F8(1.0f), bp.n1 = F8(1.0f), bp.rho0 = F8(0.0f), bp.rho1 = F8(0.0f);
+    return shade::x8::shadeFis(s, maxLod, levelC, scene.fisSamples, intensity, p.g0, p.g1, p.g2, p.eye, p.ray,
+                               materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.diffuse; }),
+                               materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.specular; }), bp);
+  });
+}
 }  // namespace
 
 void shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev,
               std::vector<float>& out) {
   if (scene.technique == "fis") return shadeFisEmu(scene, g, env, dev, out);
-  using F = emu::F32<8>;
-  using V3 = shade::V3<F>;
-  using V4 = shade::V4<F>;
-  const size_t n = size_t(g.width) * g.height;
-  out.resize(4 * n);
-  const CameraRays cam = cameraRays(scene);
   shade::Sampler2D envS;
   envS.tex = &env;
   envS.dev = &dev;
   envS.desc.addressU = emu::AddressMode::Repeat;
   envS.desc.addressV = emu::AddressMode::ClampToEdge;
-  const float maxLod = float(env.levelCount() - 1);
-  const float invW = 1.0f / float(g.width), invH = 1.0f / float(g.height);
-  const size_t blocks = (n + 7) / 8;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 64), [&](const tbb::blocked_range<size_t>& r) {
-    emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
-    for (size_t b = r.begin(); b != r.end(); ++b) {
-      V4 g0, g1;
-      V3 dif, spec;
-      F px, py;
-      for (int l = 0; l < 8; ++l) {
-        const size_t i = std::min(b * 8 + size_t(l), n - 1);
-        const float* t = g.texels.data() + i * kGbufFloats;
-        g0.x.set(l, t[0]), g0.y.set(l, t[1]), g0.z.set(l, t[2]), g0.w.set(l, t[3]);
-        g1.x.set(l, t[4]), g1.y.set(l, t[5]), g1.z.set(l, t[6]), g1.w.set(l, t[7]);
-        const Material& m = scene.materials[shade::scalar::materialSlot(t[3], uint32_t(scene.materials.size()))];
-        dif.x.set(l, m.diffuse[0]), dif.y.set(l, m.diffuse[1]), dif.z.set(l, m.diffuse[2]);
-        spec.x.set(l, m.specular[0]), spec.y.set(l, m.specular[1]), spec.z.set(l, m.specular[2]);
-        px.set(l, float(i % g.width));
-        py.set(l, float(i / g.width));
-      }
-      V3 ray = shade::x8::cameraRay(V3(F(cam.fwd[0]), F(cam.fwd[1]), F(cam.fwd[2])),
-                                    V3(F(cam.right[0]), F(cam.right[1]), F(cam.right[2])),
-                                    V3(F(cam.down[0]), F(cam.down[1]), F(cam.down[2])), px, py, F(invW), F(invH));
-      V4 c = shade::x8::shadeMirror(envS, F(maxLod), F(scene.environmentIntensity), g0, g1,
-                                    V3(F(cam.eye[0]), F(cam.eye[1]), F(cam.eye[2])), ray, dif, spec);
-      for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
-        float* o = &out[4 * (b * 8 + size_t(l))];
-        o[0] = c.x[l], o[1] = c.y[l], o[2] = c.z[l], o[3] = c.w[l];
-      }
-    }
+  const F8 maxLod(float(env.levelCount() - 1)), intensity(scene.environmentIntensity);
+  const std::vector<Material> mats = materialSlots(scene);
+  shadePixelBlocks(scene, g, dev, 64, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
+    return shade::x8::shadeMirror(envS, maxLod, intensity, p.g0, p.g1, p.eye, p.ray,
+                                  materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.diffuse; }),
+                                  materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.specular; }));
   });
 }
 

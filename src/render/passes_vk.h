@@ -55,6 +55,10 @@ class ShadowPassVk {
 
 /// The shading pass as a compute shader (src/shaders/shade_mirror.comp, the shared shade_mirror.h),
 /// one invocation per pixel in row-major order, local size 64, over a G-buffer uploaded from the host.
+/// Sampler state of an environment texture, the same as the emulator's: trilinear, clamp in v,
+/// repeat (equirectangular map) or clamp (paraboloid atlas) in u.
+VkSamplerCreateInfo environmentSamplerInfo(bool repeatU);
+
 class ShadePassVk {
  public:
   /// env: the environment with its MIP chain, as the emulator samples it (same sampler state).

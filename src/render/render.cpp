@@ -88,8 +88,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
  t0 = Clock::now();
     std::unique_ptr<emu::Texture> atlas;  // fis: the dual-paraboloid atlas, resampled from the environment
     if (scene.technique == "fis")
-      atlas = std::make_unique<emu::Texture>(
-          paraboloidTexture(paraboloidAtlasEmu(*env.texture, dev, scene.fisFaceSize), scene.fisFaceSize));
+      atlas = std::make_unique<emu::Texture>(paraboloidTextureEmu(*env.texture, dev, scene.fisFaceSize));
     const double tAtlas = ms(t0);
     t0 = Clock::now();
     image = shadeEmu(scene, g, atlas ? *atlas : *env.texture, dev);

@@ -100,8 +100,7 @@ int verifyShade(const VerifyOptions& opts, std::ostream& out) {
   // The technique's environment texture, the same for both passes (fis: the emulator's atlas).
   std::unique_ptr<emu::Texture> atlas;
   if (s.scene.technique == "fis")
-    atlas = std::make_unique<emu::Texture>(paraboloidTexture(paraboloidAtlasEmu(*env.texture, *s.dev, s.scene.fisFaceSize),
-                                                             s.scene.fisFaceSize));
+    atlas = std::make_unique<emu::Texture>(paraboloidTextureEmu(*env.texture, *s.dev, s.scene.fisFaceSize));
   const emu::Texture& tex = atlas ? *atlas : *env.texture;
   std::vector<float> e = shadeEmu(s.scene, g, tex, *s.dev);
   ShadePassVk pass(*s.ctx, s.scene, tex);
@@ -117,8 +116,7 @@ int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
   // Each build makes its own technique texture (fis: the atlas by the resampling kernel + MIP chain).
   std::unique_ptr<emu::Texture> atlasE, atlasV;
   if (s.scene.technique == "fis") {
-    atlasE = std::make_unique<emu::Texture>(paraboloidTexture(paraboloidAtlasEmu(*env.texture, *s.dev, s.scene.fisFaceSize),
-                                                              s.scene.fisFaceSize));
+    atlasE = std::make_unique<emu::Texture>(paraboloidTextureEmu(*env.texture, *s.dev, s.scene.fisFaceSize));
     atlasV = std::make_unique<emu::Texture>(paraboloidTextureVulkan(*s.ctx, *env.texture, s.scene.fisFaceSize));
   }
   std::vector<float> e = shadeEmu(s.scene, gbufferEmu(s.scene, *s.dev), atlasE ? *atlasE : *env.texture, *s.dev);
