@@ -19,16 +19,16 @@ int main(int argc, char** argv) {
   shadetwin::VerifyOptions vo;
   auto* verify = app.add_subcommand("verify", "differential tests: emulator and C++ builds against a Vulkan device");
   verify->require_subcommand(1);
-  for (const char* what : {"math", "texture", "mips", "raster", "shadow", "shade", "frame", "paraboloid"}) {
+  for (const char* what : {"math", "texture", "mips", "raster", "shadow", "shade", "frame", "paraboloid", "sh"}) {
     auto* sub = verify->add_subcommand(what, std::string("verify ") + what);
     sub->add_option("--count", vo.count, "inputs per function / lookups per configuration")->check(CLI::Range(1, 100000000));
     sub->add_option("--seed", vo.seed, "random seed");
     sub->add_option("--device", vo.device, "Vulkan device (substring of its name; default lavapipe)");
     sub->add_flag("--validate", vo.validate, "enable Vulkan validation layers; any error fails the run");
     const std::string w = what;
-    if (w == "raster" || w == "shadow" || w == "shade" || w == "frame" || w == "paraboloid") {
+    if (w == "raster" || w == "shadow" || w == "shade" || w == "frame" || w == "paraboloid" || w == "sh") {
       sub->add_option("--scene", vo.scene, "scene file")->required();
-      if (w != "shadow" && w != "paraboloid") {
+      if (w != "shadow" && w != "paraboloid" && w != "sh") {
         sub->add_option("--width", vo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
         sub->add_option("--height", vo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
       }
@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
     if (verify->got_subcommand("frame")) return shadetwin::verifyFrame(vo, std::cout);
     if (verify->got_subcommand("mips")) return shadetwin::verifyMips(vo, std::cout);
     if (verify->got_subcommand("paraboloid")) return shadetwin::verifyParaboloid(vo, std::cout);
+    if (verify->got_subcommand("sh")) return shadetwin::verifyShIrradiance(vo, std::cout);
   } catch (const std::exception& e) {
     std::cerr << "shadetwin: error: " << e.what() << "\n";
     return 2;

@@ -11,7 +11,9 @@
 
 #include "emu/sampler.h"
 #include "render/gbuffer.h"
+#include "mips.h"
 #include "render/paraboloid.h"
+#include "shade/instantiate.h"
 #include "render/render.h"
 #include "scene/scene.h"
 
@@ -28,7 +30,7 @@ TEST(ShadingPass, ThreadCountIndependent) {
   std::vector<float> ref;
   for (int threads : {1, 2, 16}) {
     tbb::global_control c(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    std::vector<float> img = shadetwin::shadeEmu(s, g, *env.texture, dev());
+    std::vector<float> img = shadetwin::shadeEmu(s, g, shadetwin::shadeInputsEmu(s, *env.texture, dev()), dev());
     if (ref.empty()) {
       ref = img;
       double sum = 0;
@@ -48,7 +50,7 @@ TEST(ShadingPass, BackgroundIsTheEnvironmentAlongTheRay) {
   std::ostringstream log;
   shadetwin::EnvironmentMap env = shadetwin::loadEnvironment(s.environment, log);
   shadetwin::GBuffer g = shadetwin::gbufferEmu(s, dev());
-  std::vector<float> img = shadetwin::shadeEmu(s, g, *env.texture, dev());
+  std::vector<float> img = shadetwin::shadeEmu(s, g, shadetwin::shadeInputsEmu(s, *env.texture, dev()), dev());
   const shadetwin::CameraRays cam = shadetwin::cameraRays(s);
   emu::SamplerDesc sd;
   sd.addressU = emu::AddressMode::Repeat;
@@ -78,8 +80,7 @@ std::vector<float> fisImage(shadetwin::Scene& s, uint32_t samples) {
   std::ostringstream log;
   shadetwin::EnvironmentMap env = shadetwin::loadEnvironment(s.environment, log);
   s.fisSamples = samples;
-  const emu::Texture atlas = shadetwin::paraboloidTextureEmu(*env.texture, dev(), s.fisFaceSize);
-  return shadetwin::shadeEmu(s, shadetwin::gbufferEmu(s, dev()), atlas, dev());
+  return shadetwin::shadeEmu(s, shadetwin::gbufferEmu(s, dev()), shadetwin::shadeInputsEmu(s, *env.texture, dev()), dev());
 }
 }  // namespace
 
@@ -120,4 +121,50 @@ TEST(FisPass, UnsupportedBrdfNamesTheMaterial) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("glass"), std::string::npos);
   }
+}
+
+TEST(FisPass, DiffuseUnderConstantEnvironmentIsKdTimesL) {
+  // With ks = 0 the pixel is kd E/pi = kd L (SH irradiance of a constant L, to the midpoint-quadrature
+  // error 1/H^2 of the projection); background pixels read the atlas, which is L exactly.
+  shadetwin::Scene s = shadetwin::loadScene(std::string(SHADETWIN_SOURCE_DIR) + "/scenes/materials.json");
+  s.width = 96, s.height = 40;
+  s.technique = "fis";
+  for (shadetwin::Material& m : s.materials) m.specular = {0, 0, 0};
+  const uint32_t W = 512, H = 256;
+  std::vector<float> level0(size_t(W) * H * 4, 1.5f);
+  const emu::Texture env = shadetwin::packTexture(emu::Format::RGBA32F, W, H, 1, shadetwin::mipChainCpu(level0, W, H, 1, 8));
+  const shadetwin::GBuffer g = shadetwin::gbufferEmu(s, dev());
+  const std::vector<float> img = shadetwin::shadeEmu(s, g, shadetwin::shadeInputsEmu(s, env, dev()), dev());
+  int geometry = 0;
+  for (size_t p = 0; p < size_t(s.width) * s.height; ++p) {
+    const float* t = &g.texels[p * shadetwin::kGbufFloats];
+    const float* c = &img[4 * p];
+    if (t[3] == 0.0f) {
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(c[k], 1.5f * s.environmentIntensity) << p;
+      continue;
+    }
+    ++geometry;
+    const shadetwin::Material& m = s.materials[shadetwin::shade::scalar::materialSlot(t[3], uint32_t(s.materials.size()))];
+    for (int k = 0; k < 3; ++k)
+      ASSERT_NEAR(c[k], m.diffuse[k] * 1.5 * s.environmentIntensity, 2e-5 * 1.5 * s.environmentIntensity) << p;
+  }
+  EXPECT_GT(geometry, 500);
+}
+
+TEST(FisPass, BookLevelBiasBlursTheGlossyTerm) {
+  // level_bias 1 (GPU Gems 3's "+1") reads every sample one level coarser: the glossy highlights
+  // spread, so the image's total variation drops; the diffuse term and background are unchanged.
+  shadetwin::Scene s = shadetwin::loadScene(std::string(SHADETWIN_SOURCE_DIR) + "/scenes/materials.json");
+  s.width = 128, s.height = 48;
+  auto variation = [&](float bias) {
+    s.fisLevelBias = bias;
+    const std::vector<float> img = fisImage(s, 16);
+    double tv = 0;
+    for (uint32_t y = 0; y < s.height; ++y)
+      for (uint32_t x = 1; x < s.width; ++x) tv += std::fabs(img[4 * (y * s.width + x) + 1] - img[4 * (y * s.width + x - 1) + 1]);
+    return tv;
+  };
+  const double tv0 = variation(0.0f), tv1 = variation(1.0f), tv3 = variation(3.0f);
+  EXPECT_LT(tv1, tv0);
+  EXPECT_LT(tv3, tv1);
 }

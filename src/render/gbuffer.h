@@ -8,6 +8,7 @@
 #include "emu/device_profile.h"
 #include "emu/raster.h"
 #include "emu/texture.h"
+#include "render/shade_inputs.h"
 #include "scene/scene.h"
 
 namespace shadetwin {
@@ -58,12 +59,11 @@ struct CameraRays {
 CameraRays cameraRays(const Scene& scene);
 
 /// Emulated deferred shading pass: compute stage, 8 lanes per device vector (SIMD build of the
-/// technique's shared source), TBB over blocks. Returns RGBA floats per pixel. `env` is the
-/// technique's environment texture: the equirectangular map for "mirror" (shade/shade_mirror.h),
-/// the dual-paraboloid atlas for "fis" (shade/shade_fis.h; see fisAtlasEmu).
-std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev);
+/// technique's shared source), TBB over blocks. Returns RGBA floats per pixel. `in`: what the
+/// technique reads from the environment (render/shade_inputs.h), built by either build.
+std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev);
 /// Same, into `out` (resized to 4 floats per pixel, storage reused).
-void shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev,
+void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
               std::vector<float>& out);
 
 /// BRDF parameters of a material for the shared samplers (shade/brdf.h); throws for BRDFs the

@@ -119,9 +119,9 @@ void gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& g, G
   g.depth.swap(fb.depth);
 }
 
-std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev) {
+std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev) {
   std::vector<float> out;
-  shadeEmu(scene, g, env, dev, out);
+  shadeEmu(scene, g, in, dev, out);
   return out;
 }
 
@@ -204,14 +204,19 @@ std::vector<Material> materialSlots(const Scene& scene) {
   return scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
 }
 
-void shadeFisEmu(const Scene& scene, const GBuffer& g, const emu::Texture& atlas, const emu::DeviceProfile& dev,
+void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
                  std::vector<float>& out) {
+  const emu::Texture& atlas = *in.atlas;
   shade::Sampler2D s;
   s.tex = &atlas;
   s.dev = &dev;
   s.desc.addressU = emu::AddressMode::ClampToEdge;
   s.desc.addressV = emu::AddressMode::ClampToEdge;
-  const F8 maxLod(float(atlas.levelCount() - 1)), levelC(fisLevelConstant(scene)), intensity(scene.environmentIntensity);
+  const F8 maxLod(float(atlas.levelCount() - 1)), levelC(fisLevelConstant(scene)), bias(scene.fisLevelBias),
+      intensity(scene.environmentIntensity);
+  V3x c[9];
+  for (int k = 0; k < 9; ++k) c[k] = splat(&in.sh.c[3 * size_t(k)]);
+  const shade::x8::ShRgb sh{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8]};
   const std::vector<Material> mats = materialSlots(scene);
   std::vector<BrdfGpu> brdfs;
   for (const Material& m : mats) brdfs.push_back(brdfOf(m));
@@ -226,16 +231,17 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const emu::Texture& atlas
     bp.kind = kind;
     const V3x zero(F8(0.0f), F8(0.0f), F8(0.0f));
     bp.c0 = zero, bp.c1 = zero, bp.n0 = F8(1.0f), bp.n1 = F8(1.0f), bp.rho0 = F8(0.0f), bp.rho1 = F8(0.0f);
-    return shade::x8::shadeFis(s, maxLod, levelC, scene.fisSamples, intensity, p.g0, p.g1, p.g2, p.eye, p.ray,
+    return shade::x8::shadeFis(s, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.g0, p.g1, p.g2, p.eye, p.ray,
                                materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.diffuse; }),
                                materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.specular; }), bp);
   });
 }
 }  // namespace
 
-void shadeEmu(const Scene& scene, const GBuffer& g, const emu::Texture& env, const emu::DeviceProfile& dev,
+void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
               std::vector<float>& out) {
-  if (scene.technique == "fis") return shadeFisEmu(scene, g, env, dev, out);
+  if (scene.technique == "fis") return shadeFisEmu(scene, g, in, dev, out);
+  const emu::Texture& env = *in.environment;
   shade::Sampler2D envS;
   envS.tex = &env;
   envS.dev = &dev;

@@ -61,8 +61,8 @@ VkSamplerCreateInfo environmentSamplerInfo(bool repeatU);
 
 class ShadePassVk {
  public:
-  /// env: the environment with its MIP chain, as the emulator samples it (same sampler state).
-  ShadePassVk(vk::Context& ctx, const Scene& scene, const emu::Texture& env);
+  /// in: the technique's inputs (either build's), sampled with the emulator's sampler state.
+  ShadePassVk(vk::Context& ctx, const Scene& scene, const ShadeInputs& in);
   ~ShadePassVk();
   std::vector<float> run(const GBuffer& g);
   double lastMs = 0;

@@ -85,17 +85,16 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     t0 = Clock::now();
     GBuffer g = gbufferEmu(scene, dev, &gs);
     const double tGbuf = ms(t0);
- t0 = Clock::now();
-    std::unique_ptr<emu::Texture> atlas;  // fis: the dual-paraboloid atlas, resampled from the environment
-    if (scene.technique == "fis")
-      atlas = std::make_unique<emu::Texture>(paraboloidTextureEmu(*env.texture, dev, scene.fisFaceSize));
-    const double tAtlas = ms(t0);
+    const ShadeInputs in = shadeInputsEmu(scene, *env.texture, dev);
     t0 = Clock::now();
-    image = shadeEmu(scene, g, atlas ? *atlas : *env.texture, dev);
+    image = shadeEmu(scene, g, in, dev);
     const double tShade = ms(t0);
-    if (atlas)
-      passes << "  paraboloid atlas (emu)   " << std::setw(8) << tAtlas << " ms  (" << 2 * scene.fisFaceSize << "x"
+    if (in.atlas) {
+      passes << "  paraboloid atlas (emu)   " << std::setw(8) << in.atlasMs << " ms  (" << 2 * scene.fisFaceSize << "x"
              << scene.fisFaceSize << " + MIP chain)\n";
+      passes << "  SH irradiance (emu)      " << std::setw(8) << in.shMs << " ms  (order 3, " << env.width << " x "
+             << env.height << " texels)\n";
+    }
     passes << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
            << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
            << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
@@ -106,9 +105,8 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     t0 = Clock::now();
     vk::Context ctx;
     GbufferPassVk gpass(ctx, scene);
-    std::unique_ptr<emu::Texture> atlas;
-    if (scene.technique == "fis") atlas = std::make_unique<emu::Texture>(paraboloidTextureVulkan(ctx, *env.texture, scene.fisFaceSize));
-    ShadePassVk spass(ctx, scene, atlas ? *atlas : *env.texture);
+    const ShadeInputs in = shadeInputsVulkan(ctx, scene, *env.texture);
+    ShadePassVk spass(ctx, scene, in);
     const double tSetup = ms(t0);
     GBuffer g = gpass.run();
     image = spass.run(g);

@@ -19,7 +19,7 @@ struct ShadePush {
   float eye[4], fwd[4], right[4], down[4];
   float invW, invH, maxLod, intensity;
   uint32_t width, count, materialCount, sampleCount;
-  float levelConstant, pad[3];
+  float levelConstant, levelBias, pad[2];
 };
 static_assert(offsetof(ShadePush, levelConstant) == 96, "the first 96 bytes are shade_mirror.comp's push block");
 static_assert(sizeof(ShadePush) == 112, "ShadePush must match the push block of shade_fis.comp");
@@ -39,20 +39,29 @@ struct ShadePassVk::Impl {
   vk::Buffer materials;
   vk::Kernel kernel;
   float envMaxLod;
+  vk::Buffer sh;  // fis: 9 vec4 of E/pi coefficients
   std::unique_ptr<vk::Buffer> gbuf, out;
-  static constexpr VkDescriptorType kLayout[4] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  static constexpr VkDescriptorType kLayout[5] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   bool fis;
   size_t materialStride() const { return fis ? sizeof(MaterialGpu) : offsetof(MaterialGpu, brdf); }
-  Impl(vk::Context& c, const Scene& s, const emu::Texture& tex)
+  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in) : Impl(c, s, in, in.texture()) {}
+  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in, const emu::Texture& tex)
       : ctx(c), scene(s),
         env(c, VK_FORMAT_R32G32B32A32_SFLOAT, tex.width(), tex.height(), 1, tex.levels(), 16, VK_IMAGE_VIEW_TYPE_2D),
         sampler(c, environmentSamplerInfo(s.technique != "fis")),  // the fis atlas clamps in u too
         materials(c, std::max<size_t>(1, s.materials.size()) * sizeof(MaterialGpu)),
         kernel(c, vk::Stage::Compute, s.technique == "fis" ? std::span<const uint32_t>(kSpv_shade_fis_comp)
                                                            : std::span<const uint32_t>(kSpv_shade_mirror_comp),
-               kLayout, s.technique == "fis" ? sizeof(ShadePush) : offsetof(ShadePush, levelConstant)),
-        envMaxLod(float(tex.levelCount() - 1)), fis(s.technique == "fis") {
+               std::span<const VkDescriptorType>(kLayout, s.technique == "fis" ? 5u : 4u),
+               s.technique == "fis" ? sizeof(ShadePush) : offsetof(ShadePush, levelConstant)),
+        envMaxLod(float(tex.levelCount() - 1)), sh(c, 9 * 16), fis(s.technique == "fis") {
+    for (int k = 0; k < 9; ++k) {
+      float* d = sh.as<float>() + 4 * k;
+      std::memcpy(d, &in.sh.c[3 * size_t(k)], 12);
+      d[3] = 0.0f;
+    }
     if (tex.format() != emu::Format::RGBA32F) throw vk::Error("shading pass: the environment must be RGBA32F");
     std::vector<Material> mats = s.materials;
     if (mats.empty()) mats.push_back(Material{});
@@ -69,8 +78,8 @@ struct ShadePassVk::Impl {
   }
 };
 
-ShadePassVk::ShadePassVk(vk::Context& ctx, const Scene& scene, const emu::Texture& env)
-    : impl_(std::make_unique<Impl>(ctx, scene, env)) {}
+ShadePassVk::ShadePassVk(vk::Context& ctx, const Scene& scene, const ShadeInputs& in)
+    : impl_(std::make_unique<Impl>(ctx, scene, in)) {}
 ShadePassVk::~ShadePassVk() = default;
 
 std::vector<float> ShadePassVk::run(const GBuffer& g) {
@@ -84,10 +93,11 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
   float* dst = m.gbuf->as<float>();
   for (size_t p = 0; p < n; ++p) std::memcpy(dst + stride / 4 * p, g.texels.data() + p * kGbufFloats, stride);
   const CameraRays cam = cameraRays(m.scene);
-  const vk::Binding b[4] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
+  const vk::Binding b[5] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.gbuf->handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.materials.handle()},
-                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.out->handle()}};
+                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.out->handle()},
+                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.sh.handle()}};
   ShadePush push{};
   std::memcpy(push.eye, cam.eye, 12);
   std::memcpy(push.fwd, cam.fwd, 12);
@@ -103,9 +113,10 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
   if (m.fis) {
     push.sampleCount = m.scene.fisSamples;
     push.levelConstant = fisLevelConstant(m.scene);
+    push.levelBias = m.scene.fisLevelBias;
   }
   auto t0 = std::chrono::steady_clock::now();
-  m.kernel.run(b, &push, uint32_t(n));
+  m.kernel.run(std::span<const vk::Binding>(b, m.fis ? 5u : 4u), &push, uint32_t(n));
   lastMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::vector<float> out(4 * n);
   std::memcpy(out.data(), m.out->data(), out.size() * 4);

@@ -221,10 +221,11 @@ Scene loadScene(const std::string& path) {
   if (j.contains("fis")) {
     const json& f = j["fis"];
     if (!f.is_object()) R.fail("fis", "expected an object with samples, k, face_size");
-    R.keys(f, "fis", {"samples", "k", "face_size"});
+    R.keys(f, "fis", {"samples", "k", "face_size", "level_bias"});
     s.fisSamples = uint32_t(R.number(f, "fis.samples", 40, 1, 4096));
     s.fisK = R.number(f, "fis.k", 4, 1e-3f, 1e6f);
     s.fisFaceSize = uint32_t(R.number(f, "fis.face_size", 256, 4, 8192));
+    s.fisLevelBias = R.number(f, "fis.level_bias", 0, 0, 16);
   }
 
   std::map<std::string, uint32_t> matIndex;

@@ -57,6 +57,7 @@ struct Scene {
   // l = max(log4(K w h / (N p r)), 0), and the face size S of the 2S x S paraboloid atlas.
   uint32_t fisSamples = 40;
   float fisK = 4.0f;
+  float fisLevelBias = 0.0f;  // added after the max: 1 = the book chapter's form (with k = 1)
   uint32_t fisFaceSize = 256;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;

@@ -10,4 +10,5 @@
 #include "shade/shadow.h"
 #include "shade/shade_mirror.h"
 #include "shade/paraboloid.h"
+#include "shade/sh_irradiance.h"
 #include "shade/shade_fis.h"

@@ -40,6 +40,8 @@ vec4 select(bool m, vec4 a, vec4 b) { return mix(b, a, bvec4(m)); }
 int select(bool m, int a, int b) { return mix(b, a, m); }
 uint select(bool m, uint a, uint b) { return mix(b, a, m); }
 bool select(bool m, bool a, bool b) { return mix(b, a, m); }
+// texelFetch of a 2D texture with separate coordinates (the C++ side has no ivec2).
+vec4 texelFetch2D(sampler2D s, int x, int y, int level) { return texelFetch(s, ivec2(x, y), level); }
 #define dot st_dot
 #define cross st_cross
 
@@ -79,6 +81,9 @@ using uint = uint32_t;
 using Sampler2D = ::shadetwin::shade::Sampler2D;
 inline Float4 textureLod(const Sampler2D& s, Float2 uv, Float lod) {
   return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod);
+}
+inline Float4 texelFetch2D(const Sampler2D& s, Int x, Int y, int level) {
+  return ::shadetwin::shade::texelFetchLanes(s, x, y, level);
 }
 // Implicit LOD from the quad (fragment stage, SIMD builds only: lanes are whole 2x2 quads).
 template <class F = Float>

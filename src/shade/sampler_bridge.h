@@ -42,6 +42,25 @@ V4<emu::F32<N>> textureLodLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v
   return r;
 }
 
+/// texelFetch(sampler2D, ivec2(x, y), level): the stored texel, converted from its format.
+inline V4<float> texelFetchLanes(const Sampler2D& s, int32_t x, int32_t y, int level) {
+  emu::Texel4 t = emu::texelFetch(*s.tex, x, y, 0, level);
+  return V4<float>(t.r, t.g, t.b, t.a);
+}
+
+template <int N>
+V4<emu::F32<N>> texelFetchLanes(const Sampler2D& s, emu::I32<N> x, emu::I32<N> y, int level) {
+  V4<emu::F32<N>> r;
+  for (int i = 0; i < N; ++i) {
+    emu::Texel4 t = emu::texelFetch(*s.tex, x[i], y[i], 0, level);
+    r.x.set(i, t.r);
+    r.y.set(i, t.g);
+    r.z.set(i, t.b);
+    r.w.set(i, t.a);
+  }
+  return r;
+}
+
 /// texture() with implicit LOD: the lanes are 2x2 quads in groups of four (top-left, top-right,
 /// bottom-left, bottom-right), as a fragment stage runs them; each quad's LOD comes from its own
 /// coordinates (emu::implicitLod, per the profile), then the N lanes sample as one device vector.

@@ -6,10 +6,12 @@
 // sample reads the dual-paraboloid atlas (shade/paraboloid.h) with trilinear textureLod at
 //   l = max(1/2 log2(K w h / (N p r(z))), 0) = max(1/2 (log2(K w h / N) - log2(p r(z))), 0),
 // the level whose texel solid angle r(z)/(w h 4^-l) matches the sample's share 1/(N p) of the
-// sphere, times K (paper eq. 7-8: K = 4 is its "+1" level bias; w h = S^2 texels per face). The
-// estimate is (1/N) sum_i L(wi) weight_i, weight_i = fs cos / p (shade/brdf.h), times ks.
-// Diffuse term: kd * E(n) / pi; until the SH-irradiance item lands, E(n)/pi is approximated by a
-// coarse level of the atlas along n (levels maxLod - 1), as the mirror technique does.
+// sphere, times K (paper eq. 7-8; w h = S^2 texels per face), plus levelBias: 0 in the paper's
+// form (K = 4 there), 1 in the book chapter's form l = max(1/2 log2(w h / N) - 1/2 log2(p d), 0) + 1
+// (GPU Gems 3 eq. 20-13, with K = 1). The estimate is (1/N) sum_i L(wi) weight_i,
+// weight_i = fs cos / p (shade/brdf.h), times ks.
+// Diffuse term: kd * E(n) / pi from the order-3 SH irradiance of the environment
+// (shade/sh_irradiance.h; the coefficients already carry A_l / pi).
 //
 // Background pixels (G0.w = 0) show the atlas along the camera ray at level 0.
 
@@ -29,8 +31,9 @@ FisFrame fisFrame(Float3 nIn, Float3 tIn, Float3 v) {
   return FisFrame(B, basisToLocal(B, v));
 }
 
-Float4 shadeFis(Sampler2D atlas, Float maxLod, Float log2KwhOverN, uint sampleCount, Float intensity, Float4 g0,
-                Float4 g1, Float4 g2, Float3 eye, Float3 ray, Float3 diffuse, Float3 specular, BrdfParams brdf) {
+Float4 shadeFis(Sampler2D atlas, Float maxLod, Float log2KwhOverN, Float levelBias, uint sampleCount, Float intensity,
+                ShRgb sh, Float4 g0, Float4 g1, Float4 g2, Float3 eye, Float3 ray, Float3 diffuse, Float3 specular,
+                BrdfParams brdf) {
   Mask geometry = g0.w != 0.0f;
   Float3 p = Float3(g0.x, g0.y, g0.z);
   Float3 v = exNormalize(eye - p);
@@ -41,13 +44,13 @@ Float4 shadeFis(Sampler2D atlas, Float maxLod, Float log2KwhOverN, uint sampleCo
     BrdfSample s = sampleBrdf(brdf, F.wo, u);
     Float3 wi = basisToWorld(F.basis, s.wi);
     PRECISE Float l = 0.5f * (log2KwhOverN - exLog2(s.pdf * paraboloidJacobian(wi.z)));
-    l = clamp(l, 0.0f, maxLod);  // pdf = 0 (a lost sample, weight 0) gives +inf: the coarsest level
+    l = min(max(l, 0.0f) + levelBias, maxLod);  // pdf = 0 (a lost sample, weight 0) gives +inf: the coarsest level
     Float4 L = textureLod(atlas, paraboloidUv(wi), l);
     sum = sum + Float3(L.x, L.y, L.z) * s.weight;
   }
   PRECISE Float invN = exDiv(1.0f, Float(sampleCount));
-  Float4 irr = textureLod(atlas, paraboloidUv(F.basis.n), max(maxLod - 1.0f, 0.0f));
-  PRECISE Float3 c = sum * invN * specular + Float3(irr.x, irr.y, irr.z) * diffuse;
+  Float3 irr = shIrradiance(sh, F.basis.n);
+  PRECISE Float3 c = sum * invN * specular + irr * diffuse;
   Float4 bg = textureLod(atlas, paraboloidUv(ray), 0.0f);
   c = select(geometry, c, Float3(bg.x, bg.y, bg.z));
   c = c * intensity;

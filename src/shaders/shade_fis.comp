@@ -12,11 +12,12 @@ layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufFis gbuf[]; };
 struct FisMaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; };  // render/shade_vk.cpp
 layout(std430, set = 0, binding = 2) readonly buffer Materials { FisMaterialGpu materials[]; };
 layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
+layout(std430, set = 0, binding = 4) readonly buffer Sh { vec4 sh[9]; };  // render/sh_irradiance.cpp
 layout(push_constant) uniform Push {
   vec4 eye, fwd, right, down;
   float invW, invH, maxLod, intensity;
   uint width, count, materialCount, sampleCount;
-  float levelConstant, pad0, pad1, pad2;
+  float levelConstant, levelBias, pad1, pad2;
 } pc;
 
 void main() {
@@ -26,7 +27,8 @@ void main() {
   FisMaterialGpu m = materials[materialSlot(g.g0.w, pc.materialCount)];
   BrdfParams bp = BrdfParams(m.kind.x, m.brdf.x, m.brdf.y, m.brdf.z, vec3(0.0f), 1.0f, 0.0f, vec3(0.0f), 1.0f, 0.0f);
   vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
-  vec4 c = shadeFis(atlas, pc.maxLod, pc.levelConstant, pc.sampleCount, pc.intensity, g.g0, g.g1, g.g2, pc.eye.xyz, ray,
-                    m.diffuse.xyz, m.specular.xyz, bp);
+  ShRgb e = ShRgb(sh[0].xyz, sh[1].xyz, sh[2].xyz, sh[3].xyz, sh[4].xyz, sh[5].xyz, sh[6].xyz, sh[7].xyz, sh[8].xyz);
+  vec4 c = shadeFis(atlas, pc.maxLod, pc.levelConstant, pc.levelBias, pc.sampleCount, pc.intensity, e, g.g0, g.g1, g.g2,
+                    pc.eye.xyz, ray, m.diffuse.xyz, m.specular.xyz, bp);
   if (i < pc.count) color[i] = c;
 }

@@ -38,6 +38,8 @@ int verifyShadow(const VerifyOptions& opts, std::ostream& out);
 
 /// Dual-paraboloid atlas of the scene's environment (resampling kernel and its MIP chain), emulator vs Vulkan build.
 int verifyParaboloid(const VerifyOptions& opts, std::ostream& out);
+/// Order-3 SH irradiance of the scene's environment (projection rows + reduction tree), emulator vs Vulkan build.
+int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out);
 /// Shading pass of both builds on the same G-buffer (the Vulkan build's, read back): every channel.
 int verifyShade(const VerifyOptions& opts, std::ostream& out);
 /// Whole frames: emulator (G-buffer + shading) vs Vulkan build (G-buffer + shading).

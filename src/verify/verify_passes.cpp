@@ -9,6 +9,7 @@
 #include "emu/device_profile.h"
 #include "mips.h"
 #include "render/paraboloid.h"
+#include "render/sh_irradiance.h"
 #include "render/passes_vk.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -97,13 +98,10 @@ int verifyShade(const VerifyOptions& opts, std::ostream& out) {
   std::ostringstream quiet;
   EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
   GBuffer g = gbufferVulkan(*s.ctx, s.scene);  // one G-buffer for both shading passes
-  // The technique's environment texture, the same for both passes (fis: the emulator's atlas).
-  std::unique_ptr<emu::Texture> atlas;
-  if (s.scene.technique == "fis")
-    atlas = std::make_unique<emu::Texture>(paraboloidTextureEmu(*env.texture, *s.dev, s.scene.fisFaceSize));
-  const emu::Texture& tex = atlas ? *atlas : *env.texture;
-  std::vector<float> e = shadeEmu(s.scene, g, tex, *s.dev);
-  ShadePassVk pass(*s.ctx, s.scene, tex);
+  // The technique's inputs, the same for both passes (fis: the emulator's atlas and SH irradiance).
+  const ShadeInputs in = shadeInputsEmu(s.scene, *env.texture, *s.dev);
+  std::vector<float> e = shadeEmu(s.scene, g, in, *s.dev);
+  ShadePassVk pass(*s.ctx, s.scene, in);
   std::vector<float> v = pass.run(g);
   out << "technique " << s.scene.technique << ", shading the Vulkan build's G-buffer in both builds\n";
   return finish("shade", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
@@ -113,14 +111,11 @@ int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
   Setup s = setUp(opts, out);
   std::ostringstream quiet;
   EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
-  // Each build makes its own technique texture (fis: the atlas by the resampling kernel + MIP chain).
-  std::unique_ptr<emu::Texture> atlasE, atlasV;
-  if (s.scene.technique == "fis") {
-    atlasE = std::make_unique<emu::Texture>(paraboloidTextureEmu(*env.texture, *s.dev, s.scene.fisFaceSize));
-    atlasV = std::make_unique<emu::Texture>(paraboloidTextureVulkan(*s.ctx, *env.texture, s.scene.fisFaceSize));
-  }
-  std::vector<float> e = shadeEmu(s.scene, gbufferEmu(s.scene, *s.dev), atlasE ? *atlasE : *env.texture, *s.dev);
-  ShadePassVk pass(*s.ctx, s.scene, atlasV ? *atlasV : *env.texture);
+  // Each build makes its own technique inputs (fis: atlas + MIP chain, SH irradiance).
+  const ShadeInputs inE = shadeInputsEmu(s.scene, *env.texture, *s.dev);
+  const ShadeInputs inV = shadeInputsVulkan(*s.ctx, s.scene, *env.texture);
+  std::vector<float> e = shadeEmu(s.scene, gbufferEmu(s.scene, *s.dev), inE, *s.dev);
+  ShadePassVk pass(*s.ctx, s.scene, inV);
   std::vector<float> v = pass.run(gbufferVulkan(*s.ctx, s.scene));
   out << "technique " << s.scene.technique << ", whole frames (G-buffer + shading) of each build\n";
   return finish("frame", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
@@ -143,6 +138,20 @@ int verifyParaboloid(const VerifyOptions& opts, std::ostream& out) {
     for (size_t i = 0; i < ce[l].size(); ++i) mips.add(ce[l][i], cv[l][i]);
   t.push_back(mips);
   return finish("paraboloid", printTallies(t, out), *s.ctx, opts, out);
+}
+
+int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out) {
+  Setup s = setUp(opts, out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
+  const ShIrradiance e = shIrradianceEmu(*env.texture, *s.dev), v = shIrradianceVulkan(*s.ctx, *env.texture);
+  out << "environment " << s.scene.environment << " (" << env.width << "x" << env.height
+      << ") -> 9 x RGB coefficients of E/pi\n";
+  UlpTally t{"coefficients"};
+  for (size_t i = 0; i < e.c.size(); ++i) t.add(e.c[i], v.c[i]);
+  out << "E/pi(+y) = " << shIrradianceAt(e, {0, 1, 0})[1] << ", E/pi(-y) = " << shIrradianceAt(e, {0, -1, 0})[1]
+      << " (green)\n";
+  return finish("sh", printTallies({t}, out), *s.ctx, opts, out);
 }
 
 }  // namespace shadetwin

@@ -1,0 +1,37 @@
+#include "render/shade_inputs.h"
+
+#include <chrono>
+
+#include "render/paraboloid.h"
+
+namespace shadetwin {
+namespace {
+template <class F>
+double timed(F&& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+ShadeInputs shadeInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
+  ShadeInputs in;
+  in.environment = &env;
+  if (scene.technique == "fis") {
+    in.atlasMs = timed([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureEmu(env, dev, scene.fisFaceSize)); });
+    in.shMs = timed([&] { in.sh = shIrradianceEmu(env, dev); });
+  }
+  return in;
+}
+
+ShadeInputs shadeInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::Texture& env) {
+  ShadeInputs in;
+  in.environment = &env;
+  if (scene.technique == "fis") {
+    in.atlasMs = timed([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureVulkan(ctx, env, scene.fisFaceSize)); });
+    in.shMs = timed([&] { in.sh = shIrradianceVulkan(ctx, env); });
+  }
+  return in;
+}
+
+}  // namespace shadetwin

@@ -1,0 +1,27 @@
+#version 450
+// SH irradiance, step 1 (shade/sh_irradiance.h shProjectRow): one invocation per row of the
+// equirectangular environment, local size 64; writes the row's 9 RGB coefficients (vec4, w = 0).
+#extension GL_GOOGLE_include_directive : require
+#include "shade/all.inl"
+
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) uniform sampler2D env;
+layout(std430, set = 0, binding = 1) writeonly buffer Rows { vec4 rows[]; };  // 9 per row
+layout(push_constant) uniform Push { int width; int height; } pc;  // render/sh_irradiance.cpp
+
+void main() {
+  int y = min(int(gl_GlobalInvocationID.x), pc.height - 1);  // tail invocations repeat the last row
+  ShRgb s = shProjectRow(env, y, pc.width, pc.height);
+  if (int(gl_GlobalInvocationID.x) < pc.height) {
+    uint o = uint(y) * 9u;
+    rows[o + 0u] = vec4(s.c0, 0.0f);
+    rows[o + 1u] = vec4(s.c1, 0.0f);
+    rows[o + 2u] = vec4(s.c2, 0.0f);
+    rows[o + 3u] = vec4(s.c3, 0.0f);
+    rows[o + 4u] = vec4(s.c4, 0.0f);
+    rows[o + 5u] = vec4(s.c5, 0.0f);
+    rows[o + 6u] = vec4(s.c6, 0.0f);
+    rows[o + 7u] = vec4(s.c7, 0.0f);
+    rows[o + 8u] = vec4(s.c8, 0.0f);
+  }
+}
