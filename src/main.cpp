@@ -82,6 +82,8 @@ int main(int argc, char** argv) {
   bench->add_option("--directions", bo.directions, "shadow-map directions")->check(CLI::Range(1, 4096));
   bench->add_option("--shadow-size", bo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
   bench->add_option("--device", bo.device, "Vulkan device (substring of its name; default lavapipe)");
+  bench->add_option("--technique", bo.technique, "shading technique (default: the scene's); passes default to gbuffer,shade");
+  bench->add_option("--samples", bo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -93,7 +95,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (app.got_subcommand("render")) return shadetwin::renderCommand(ro, std::cout);
-    if (app.got_subcommand("bench")) return shadetwin::benchCommand(bo, std::cout);
+    if (app.got_subcommand("bench")) {
+      if (!bo.technique.empty() && bench->get_option("--passes")->count() == 0) bo.passes = "gbuffer,shade";
+      return shadetwin::benchCommand(bo, std::cout);
+    }
     if (app.got_subcommand("reference")) return shadetwin::referenceCommand(refo, std::cout);
     if (app.got_subcommand("compare")) return shadetwin::compareCommand(cmpA, cmpB, std::cout);
     if (verify->got_subcommand("math")) return shadetwin::verifyMath(vo, std::cout);

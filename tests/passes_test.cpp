@@ -24,6 +24,7 @@ const emu::DeviceProfile& dev() { return emu::lavapipeProfile(); }
 TEST(ShadingPass, ThreadCountIndependent) {
   shadetwin::Scene s = shadetwin::loadScene(std::string(SHADETWIN_SOURCE_DIR) + "/scenes/spheres.json");
   s.width = 256, s.height = 96;
+  s.technique = "mirror";
   std::ostringstream log;
   shadetwin::EnvironmentMap env = shadetwin::loadEnvironment(s.environment, log);
   shadetwin::GBuffer g = shadetwin::gbufferEmu(s, dev());
@@ -47,6 +48,7 @@ TEST(ShadingPass, BackgroundIsTheEnvironmentAlongTheRay) {
   shadetwin::Scene s = shadetwin::loadScene(std::string(SHADETWIN_SOURCE_DIR) + "/scenes/bunny.json");
   s.objects.clear();
   s.width = 64, s.height = 48;
+  s.technique = "mirror";
   std::ostringstream log;
   shadetwin::EnvironmentMap env = shadetwin::loadEnvironment(s.environment, log);
   shadetwin::GBuffer g = shadetwin::gbufferEmu(s, dev());

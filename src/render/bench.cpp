@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -32,6 +33,10 @@ int benchCommand(const BenchOptions& opts, std::ostream& log) {
   Scene scene = loadScene(opts.scene);
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
+  if (!opts.technique.empty()) scene.technique = opts.technique;
+  if (opts.samples) scene.fisSamples = opts.samples;
+  if (!isTechnique(scene.technique))
+    throw std::invalid_argument("--technique: unknown technique '" + scene.technique + "' (expected fis, unfiltered, stochastic, env or mirror)");
   std::vector<std::string> passes;
   std::stringstream ss(opts.passes);
   for (std::string p; std::getline(ss, p, ',');) {
@@ -44,7 +49,9 @@ int benchCommand(const BenchOptions& opts, std::ostream& log) {
   const emu::DeviceProfile& dev = emu::profileForDevice(ctx.deviceName());
   log << "bench " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << scene.triangles()
       << " triangles; shadow maps " << opts.directions << " x " << opts.shadowSize << "^2; device " << ctx.deviceName()
-      << " (profile " << dev.name << "); median of " << opts.repeat << " runs\n";
+      << " (profile " << dev.name << "); technique " << scene.technique;
+  if (scene.technique != "mirror") log << " (" << scene.fisSamples << " samples)";
+  log << "; median of " << opts.repeat << " runs\n";
   const std::vector<Vec3> dirs = sphereDirections(opts.directions);
   std::ostringstream quiet;
   std::unique_ptr<EnvironmentMap> env;
@@ -89,6 +96,12 @@ int benchCommand(const BenchOptions& opts, std::ostream& log) {
         << std::setw(8) << mv << " ms   ratio " << std::setprecision(3) << me / mv << std::setprecision(1) << "\n";
   }
   log << "  total     emu " << std::setw(8) << emuSum << " ms   vulkan " << std::setw(8) << vkSum << " ms\n";
+  if (shpass) {  // the frame each build renders on its own: its G-buffer, then its shading pass
+    const std::vector<float> e = shadeEmu(scene, gbufferEmu(scene, dev), inputs, dev), v = shpass->run(gpass.run());
+    size_t same = 0;
+    for (size_t i = 0; i < e.size(); ++i) same += std::memcmp(&e[i], &v[i], 4) == 0;
+    log << "frame: " << same << "/" << e.size() << " bit-identical\n";
+  }
   log << std::setprecision(3) << "ratio emu/vulkan: " << emuSum / vkSum << "\n";
   return 0;
 }

@@ -3,6 +3,8 @@
 // Emulator times are the pass functions end to end (allocation and clear of their targets included);
 // Vulkan times are submit-to-fence of the recorded pass including the copy of its targets into
 // host-visible memory (pipelines, targets and buffers are built once, outside the timing).
+// With the shading pass, the run also checks that both builds produce the same frame bits (each
+// build's G-buffer, then its shading pass) and prints `frame: I/T bit-identical` before the ratio.
 #pragma once
 #include <cstdint>
 #include <ostream>
@@ -17,6 +19,8 @@ struct BenchOptions {
   uint32_t repeat = 5;
   uint32_t directions = 16, shadowSize = 1024;
   std::string device;  // Vulkan device substring; empty = lavapipe
+  std::string technique;  // overrides the scene's shading technique (and then passes default to gbuffer,shade)
+  uint32_t samples = 0;   // fis samples per pixel (0: the scene's)
 };
 
 int benchCommand(const BenchOptions& opts, std::ostream& log);

@@ -74,6 +74,9 @@ struct BrdfGpu {
 };
 BrdfGpu brdfOf(const Material& m);
 
+/// Mode of the FIS pass for the scene's technique (kFisFiltered / kFisUnfiltered / kFisStochastic).
+uint32_t fisMode(const Scene& scene);
+
 /// log2(K w h / N) of the FIS level formula for the scene's settings (w h = S^2 texels per face).
 float fisLevelConstant(const Scene& scene);
 

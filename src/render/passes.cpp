@@ -134,6 +134,12 @@ BrdfGpu brdfOf(const Material& m) {
                               "' cannot be importance-sampled by fis (phong, blinn, ward or ggx)");
 }
 
+uint32_t fisMode(const Scene& scene) {
+  if (scene.technique == "unfiltered") return shade::scalar::kFisUnfiltered;
+  if (scene.technique == "stochastic") return shade::scalar::kFisStochastic;
+  return shade::scalar::kFisFiltered;
+}
+
 float fisLevelConstant(const Scene& scene) {
   const double S = scene.fisFaceSize;
   return float(std::log2(double(scene.fisK) * S * S / double(scene.fisSamples)));
@@ -149,6 +155,7 @@ using V4x = shade::V4<F8>;
 struct PixelBlock {
   V4x g0, g1, g2;
   V3x eye, ray;
+  emu::U32<8> pixel;  // row-major pixel index (tail lanes: the last pixel)
   uint32_t slot[8];
 };
 
@@ -186,6 +193,7 @@ void shadePixelBlocks(const Scene& scene, const GBuffer& g, const emu::DevicePro
         p.g1.x.set(l, t[4]), p.g1.y.set(l, t[5]), p.g1.z.set(l, t[6]), p.g1.w.set(l, t[7]);
         p.g2.x.set(l, t[8]), p.g2.y.set(l, t[9]), p.g2.z.set(l, t[10]), p.g2.w.set(l, t[11]);
         p.slot[l] = shade::scalar::materialSlot(t[3], materialCount);
+        p.pixel.set(l, uint32_t(i));
         px.set(l, float(i % g.width));
         py.set(l, float(i / g.width));
       }
@@ -200,8 +208,51 @@ void shadePixelBlocks(const Scene& scene, const GBuffer& g, const emu::DevicePro
   });
 }
 
+// Per-lane BRDF parameters of each lane's material (Lafortune lobes unused: brdfOf rejects it).
+shade::x8::BrdfParams brdfLanes(const PixelBlock& p, const std::vector<BrdfGpu>& brdfs) {
+  shade::x8::BrdfParams bp{};
+  emu::U32<8> kind(0u);
+  for (int l = 0; l < 8; ++l) {
+    const BrdfGpu& q = brdfs[p.slot[l]];
+    kind.set(l, q.kind);
+    bp.e.set(l, q.e), bp.ax.set(l, q.ax), bp.ay.set(l, q.ay);
+  }
+  bp.kind = kind;
+  const V3x zero(F8(0.0f), F8(0.0f), F8(0.0f));
+  bp.c0 = zero, bp.c1 = zero, bp.n0 = F8(1.0f), bp.n1 = F8(1.0f), bp.rho0 = F8(0.0f), bp.rho1 = F8(0.0f);
+  return bp;
+}
+
 std::vector<Material> materialSlots(const Scene& scene) {
   return scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
+}
+
+// Technique env: the light loop of shade_env.comp (light 0 first, shAdd3) around the shared terms.
+void shadeEnvEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                 std::vector<float>& out) {
+  shade::Sampler2D s;
+  s.tex = in.environment;
+  s.dev = &dev;
+  s.desc.addressU = emu::AddressMode::Repeat;
+  s.desc.addressV = emu::AddressMode::ClampToEdge;
+  const F8 intensity(scene.environmentIntensity);
+  const std::vector<Material> mats = materialSlots(scene);
+  std::vector<BrdfGpu> brdfs;
+  for (const Material& m : mats) brdfs.push_back(brdfOf(m));
+  const std::vector<float>& L = in.lights.data;
+  shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
+    const shade::x8::BrdfParams bp = brdfLanes(p, brdfs);
+    const V3x kd = materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.diffuse; });
+    const V3x ks = materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.specular; });
+    V3x sum(F8(0.0f), F8(0.0f), F8(0.0f));
+    const emu::Mask<8> geometry = p.g0.w != F8(0.0f);
+    if (anyLane(geometry)) {  // IF_ANY, as shade_env.comp's per-invocation if
+      const auto F = shade::x8::envFrame(p.g0, p.g1, p.g2, p.eye);
+      for (uint32_t j = 0; j < in.lights.count; ++j)
+        sum = shade::x8::shAdd3(sum, shade::x8::envLightTerm(F, bp, kd, ks, splat(&L[8 * j]), splat(&L[8 * j + 4])));
+    }
+    return shade::x8::envFinish(s, p.g0, p.ray, sum, intensity);
+  });
 }
 
 void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
@@ -217,21 +268,13 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
   V3x c[9];
   for (int k = 0; k < 9; ++k) c[k] = splat(&in.sh.c[3 * size_t(k)]);
   const shade::x8::ShRgb sh{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8]};
+  const uint32_t mode = fisMode(scene);
   const std::vector<Material> mats = materialSlots(scene);
   std::vector<BrdfGpu> brdfs;
   for (const Material& m : mats) brdfs.push_back(brdfOf(m));
   shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
-    shade::x8::BrdfParams bp{};
-    emu::U32<8> kind(0u);
-    for (int l = 0; l < 8; ++l) {
-      const BrdfGpu& q = brdfs[p.slot[l]];
-      kind.set(l, q.kind);
-      bp.e.set(l, q.e), bp.ax.set(l, q.ax), bp.ay.set(l, q.ay);
-    }
-    bp.kind = kind;
-    const V3x zero(F8(0.0f), F8(0.0f), F8(0.0f));
-    bp.c0 = zero, bp.c1 = zero, bp.n0 = F8(1.0f), bp.n1 = F8(1.0f), bp.rho0 = F8(0.0f), bp.rho1 = F8(0.0f);
-    return shade::x8::shadeFis(s, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.g0, p.g1, p.g2, p.eye, p.ray,
+    const shade::x8::BrdfParams bp = brdfLanes(p, brdfs);
+    return shade::x8::shadeFis(s, mode, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.pixel, p.g0, p.g1, p.g2, p.eye, p.ray,
                                materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.diffuse; }),
                                materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.specular; }), bp);
   });
@@ -240,7 +283,8 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
 
 void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
               std::vector<float>& out) {
-  if (scene.technique == "fis") return shadeFisEmu(scene, g, in, dev, out);
+  if (usesFisPass(scene.technique)) return shadeFisEmu(scene, g, in, dev, out);
+  if (scene.technique == "env") return shadeEnvEmu(scene, g, in, dev, out);
   const emu::Texture& env = *in.environment;
   shade::Sampler2D envS;
   envS.tex = &env;

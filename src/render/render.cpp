@@ -99,7 +99,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
            << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
            << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
     passes << "  shading (emu, " << scene.technique;
-    if (scene.technique == "fis") passes << ", " << scene.fisSamples << " samples";
+    if (scene.technique != "mirror") passes << ", " << scene.fisSamples << " samples";
     passes << ")    " << std::setw(8) << tShade << " ms\n";
   } else {
     t0 = Clock::now();

@@ -17,20 +17,22 @@ double timed(F&& f) {
 ShadeInputs shadeInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
   ShadeInputs in;
   in.environment = &env;
-  if (scene.technique == "fis") {
+  if (usesFisPass(scene.technique)) {
     in.atlasMs = timed([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureEmu(env, dev, scene.fisFaceSize)); });
     in.shMs = timed([&] { in.sh = shIrradianceEmu(env, dev); });
   }
+  if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
   return in;
 }
 
 ShadeInputs shadeInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::Texture& env) {
   ShadeInputs in;
   in.environment = &env;
-  if (scene.technique == "fis") {
+  if (usesFisPass(scene.technique)) {
     in.atlasMs = timed([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureVulkan(ctx, env, scene.fisFaceSize)); });
     in.shMs = timed([&] { in.sh = shIrradianceVulkan(ctx, env); });
   }
+  if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
   return in;
 }
 

@@ -1,12 +1,14 @@
 // What a technique's shading pass reads besides the G-buffer, built from the environment by one
 // build (emulator or Vulkan device): mirror reads the equirectangular map itself; fis reads the
-// dual-paraboloid atlas (render/paraboloid.h) and the SH irradiance (render/sh_irradiance.h).
+// dual-paraboloid atlas (render/paraboloid.h) and the SH irradiance (render/sh_irradiance.h); env
+// reads the equirectangular map (background) and its light list (render/env_lights.h).
 // A technique's inputs are built only when it needs them.
 #pragma once
 #include <memory>
 
 #include "emu/device_profile.h"
 #include "emu/texture.h"
+#include "render/env_lights.h"
 #include "render/sh_irradiance.h"
 #include "scene/scene.h"
 
@@ -17,6 +19,7 @@ struct ShadeInputs {
   const emu::Texture* environment = nullptr;  // equirectangular, RGBA32F with its MIP chain
   std::shared_ptr<const emu::Texture> atlas;  // fis: dual-paraboloid atlas with its MIP chain
   ShIrradiance sh;                            // fis: E/pi coefficients
+  EnvLights lights;                           // env: directional lights (host-sampled, the same for both builds)
   double atlasMs = 0, shMs = 0;               // build times (0 when not built)
   /// The texture the shading kernel samples: the atlas for fis, else the environment.
   const emu::Texture& texture() const { return atlas ? *atlas : *environment; }

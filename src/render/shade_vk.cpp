@@ -12,6 +12,7 @@ namespace shadetwin {
 namespace {
 #include "shade_mirror_comp.inc"
 #include "shade_fis_comp.inc"
+#include "shade_env_comp.inc"
 
 // One push block for both kernels: shade_mirror.comp declares the first 96 bytes (its last uint is
 // padding), shade_fis.comp all 112.
@@ -19,7 +20,8 @@ struct ShadePush {
   float eye[4], fwd[4], right[4], down[4];
   float invW, invH, maxLod, intensity;
   uint32_t width, count, materialCount, sampleCount;
-  float levelConstant, levelBias, pad[2];
+  float levelConstant, levelBias;
+  uint32_t mode, pad;
 };
 static_assert(offsetof(ShadePush, levelConstant) == 96, "the first 96 bytes are shade_mirror.comp's push block");
 static_assert(sizeof(ShadePush) == 112, "ShadePush must match the push block of shade_fis.comp");
@@ -29,6 +31,21 @@ struct MaterialGpu {
   uint32_t kind[4];
 };
 static_assert(sizeof(MaterialGpu) == 64 && offsetof(MaterialGpu, brdf) == 32, "MaterialGpu must match shade_*.comp");
+
+// What each kernel binds: mirror reads 96 push bytes, 4 bindings, {diffuse, specular} materials and the
+// equirectangular map; fis all 112 bytes and binding 4 = SH coefficients, the atlas (clamped in u);
+// env 96 bytes (sampleCount = light count) and binding 4 = lights, the equirectangular map.
+struct KernelInfo {
+  std::span<const uint32_t> spirv;
+  uint32_t bindings;
+  size_t pushBytes;
+  bool brdf, repeatU;
+};
+KernelInfo kernelInfo(const std::string& technique) {
+  if (usesFisPass(technique)) return {kSpv_shade_fis_comp, 5, sizeof(ShadePush), true, false};
+  if (technique == "env") return {kSpv_shade_env_comp, 5, offsetof(ShadePush, levelConstant), true, true};
+  return {kSpv_shade_mirror_comp, 4, offsetof(ShadePush, levelConstant), false, true};
+}
 }  // namespace
 
 struct ShadePassVk::Impl {
@@ -39,29 +56,32 @@ struct ShadePassVk::Impl {
   vk::Buffer materials;
   vk::Kernel kernel;
   float envMaxLod;
-  vk::Buffer sh;  // fis: 9 vec4 of E/pi coefficients
+  vk::Buffer extra;  // binding 4: fis, 9 vec4 of E/pi coefficients; env, the lights
   std::unique_ptr<vk::Buffer> gbuf, out;
   static constexpr VkDescriptorType kLayout[5] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  KernelInfo info;
   bool fis;
-  size_t materialStride() const { return fis ? sizeof(MaterialGpu) : offsetof(MaterialGpu, brdf); }
-  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in) : Impl(c, s, in, in.texture()) {}
-  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in, const emu::Texture& tex)
+  uint32_t lightCount;
+  size_t materialStride() const { return info.brdf ? sizeof(MaterialGpu) : offsetof(MaterialGpu, brdf); }
+  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in) : Impl(c, s, in, in.texture(), kernelInfo(s.technique)) {}
+  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in, const emu::Texture& tex, const KernelInfo& ki)
       : ctx(c), scene(s),
         env(c, VK_FORMAT_R32G32B32A32_SFLOAT, tex.width(), tex.height(), 1, tex.levels(), 16, VK_IMAGE_VIEW_TYPE_2D),
-        sampler(c, environmentSamplerInfo(s.technique != "fis")),  // the fis atlas clamps in u too
+        sampler(c, environmentSamplerInfo(ki.repeatU)),
         materials(c, std::max<size_t>(1, s.materials.size()) * sizeof(MaterialGpu)),
-        kernel(c, vk::Stage::Compute, s.technique == "fis" ? std::span<const uint32_t>(kSpv_shade_fis_comp)
-                                                           : std::span<const uint32_t>(kSpv_shade_mirror_comp),
-               std::span<const VkDescriptorType>(kLayout, s.technique == "fis" ? 5u : 4u),
-               s.technique == "fis" ? sizeof(ShadePush) : offsetof(ShadePush, levelConstant)),
-        envMaxLod(float(tex.levelCount() - 1)), sh(c, 9 * 16), fis(s.technique == "fis") {
-    for (int k = 0; k < 9; ++k) {
-      float* d = sh.as<float>() + 4 * k;
-      std::memcpy(d, &in.sh.c[3 * size_t(k)], 12);
-      d[3] = 0.0f;
-    }
+        kernel(c, vk::Stage::Compute, ki.spirv, std::span<const VkDescriptorType>(kLayout, ki.bindings), uint32_t(ki.pushBytes)),
+        envMaxLod(float(tex.levelCount() - 1)), extra(c, std::max<size_t>(9 * 16, in.lights.data.size() * 4)), info(ki),
+        fis(usesFisPass(s.technique)), lightCount(in.lights.count) {
+    if (fis)
+      for (int k = 0; k < 9; ++k) {
+        float* d = extra.as<float>() + 4 * k;
+        std::memcpy(d, &in.sh.c[3 * size_t(k)], 12);
+        d[3] = 0.0f;
+      }
+    else if (!in.lights.data.empty())
+      std::memcpy(extra.data(), in.lights.data.data(), in.lights.data.size() * 4);
     if (tex.format() != emu::Format::RGBA32F) throw vk::Error("shading pass: the environment must be RGBA32F");
     std::vector<Material> mats = s.materials;
     if (mats.empty()) mats.push_back(Material{});
@@ -69,7 +89,7 @@ struct ShadePassVk::Impl {
       MaterialGpu m{};
       std::memcpy(m.diffuse, mats[i].diffuse.data(), 12);
       std::memcpy(m.specular, mats[i].specular.data(), 12);
-      if (fis) {
+      if (info.brdf) {
         const BrdfGpu b = brdfOf(mats[i]);
         m.brdf[0] = b.e, m.brdf[1] = b.ax, m.brdf[2] = b.ay, m.kind[0] = b.kind;
       }
@@ -85,7 +105,7 @@ ShadePassVk::~ShadePassVk() = default;
 std::vector<float> ShadePassVk::run(const GBuffer& g) {
   Impl& m = *impl_;
   const size_t n = size_t(g.width) * g.height;
-  const size_t stride = m.fis ? 48 : 32;  // G0, G1 (+ G2, the tangent, for fis)
+  const size_t stride = m.info.brdf ? 48 : 32;  // G0, G1 (+ G2, the tangent, for fis and env)
   if (!m.gbuf || m.gbuf->size() < n * stride) {
     m.gbuf = std::make_unique<vk::Buffer>(m.ctx, n * stride);
     m.out = std::make_unique<vk::Buffer>(m.ctx, n * 16);
@@ -97,7 +117,7 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.gbuf->handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.materials.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.out->handle()},
-                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.sh.handle()}};
+                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.extra.handle()}};
   ShadePush push{};
   std::memcpy(push.eye, cam.eye, 12);
   std::memcpy(push.fwd, cam.fwd, 12);
@@ -114,9 +134,12 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
     push.sampleCount = m.scene.fisSamples;
     push.levelConstant = fisLevelConstant(m.scene);
     push.levelBias = m.scene.fisLevelBias;
+    push.mode = fisMode(m.scene);
+  } else if (m.scene.technique == "env") {
+    push.sampleCount = m.lightCount;
   }
   auto t0 = std::chrono::steady_clock::now();
-  m.kernel.run(std::span<const vk::Binding>(b, m.fis ? 5u : 4u), &push, uint32_t(n));
+  m.kernel.run(std::span<const vk::Binding>(b, m.info.bindings), &push, uint32_t(n));
   lastMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   std::vector<float> out(4 * n);
   std::memcpy(out.data(), m.out->data(), out.size() * 4);

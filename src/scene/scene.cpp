@@ -215,9 +215,9 @@ Scene loadScene(const std::string& path) {
                                      (file.find("assets/") != std::string::npos ? " (fetch the assets with: bash scripts/setup.sh)" : ""));
     s.environmentIntensity = R.number(e, "environment.intensity", 1, 0, 1e9f);
   }
-  s.technique = R.string(j, "technique", "mirror");
-  if (s.technique != "mirror" && s.technique != "fis")
-    R.fail("technique", "unknown technique '" + s.technique + "' (expected: mirror or fis)");
+  s.technique = R.string(j, "technique", "fis");
+  if (!isTechnique(s.technique))
+    R.fail("technique", "unknown technique '" + s.technique + "' (expected: fis, unfiltered, stochastic, env or mirror)");
   if (j.contains("fis")) {
     const json& f = j["fis"];
     if (!f.is_object()) R.fail("fis", "expected an object with samples, k, face_size");

@@ -46,13 +46,25 @@ struct CameraBasis {
   Vec3 right, up, forward;
 };
 
+/// Shading techniques: "fis" (filtered importance sampling, issue 4), its baselines "unfiltered"
+/// (the same samples at level 0) and "stochastic" (per-pixel rotated samples at level 0), and
+/// "env" (environment importance sampling as directional lights), and "mirror" (the simple lookup
+/// pass of issue 3). The first three run the FIS pass (shade/shade_fis.h).
+inline constexpr const char* kTechniques[] = {"fis", "unfiltered", "stochastic", "env", "mirror"};
+inline bool isTechnique(const std::string& t) {
+  for (const char* k : kTechniques)
+    if (t == k) return true;
+  return false;
+}
+inline bool usesFisPass(const std::string& t) { return t == "fis" || t == "unfiltered" || t == "stochastic"; }
+
 struct Scene {
   std::string path;  // the scene file
   uint32_t width = 512, height = 512;
   Camera camera;
   std::string environment;        // resolved path of the EXR/HDR
   float environmentIntensity = 1.0f;
-  std::string technique = "mirror";  // shading technique: mirror (simple lookup) or fis
+  std::string technique = "fis";  // shading technique, see kTechniques
   // Filtered importance sampling ("fis" block): samples per pixel, the level constant K of
   // l = max(log4(K w h / (N p r)), 0), and the face size S of the 2S x S paraboloid atlas.
   uint32_t fisSamples = 40;

@@ -12,3 +12,4 @@
 #include "shade/paraboloid.h"
 #include "shade/sh_irradiance.h"
 #include "shade/shade_fis.h"
+#include "shade/shade_env.h"

@@ -23,6 +23,35 @@ Float2 hammersley(Uint i, Uint n) {
   return Float2(u, radicalInverse2(i));
 }
 
+// Integer hash of 32 bits (C. Wellons' "lowbias32", 2018: xorshift-multiply rounds, bias 0.17 of a
+// random permutation); shared integer code, so every build draws the same numbers.
+Uint hashLowbias32(Uint v) {
+  Uint x = v ^ (v >> 16);
+  x = x * 0x7feb352du;
+  x = x ^ (x >> 15);
+  x = x * 0x846ca68bu;
+  x = x ^ (x >> 16);
+  return x;
+}
+
+// Per-pixel offset in [0, 1)^2 (24 bits each, exact) for a Cranley-Patterson rotation.
+Float2 pixelOffset(Uint pixel) {
+  Uint a = hashLowbias32(pixel * 2u);
+  Uint b = hashLowbias32(pixel * 2u + 1u);
+  PRECISE Float2 r = Float2(Float(a >> 8) * 5.96046448e-08f, Float(b >> 8) * 5.96046448e-08f);
+  return r;
+}
+
+// Cranley-Patterson rotation (Cranley & Patterson 1976): u + r modulo 1 (a point at 0 keeps its weight
+// rules: the samplers treat pdf = 0 as a lost sample).
+Float2 rotatePoint(Float2 u, Float2 r) {
+  PRECISE Float x = u.x + r.x;
+  PRECISE Float y = u.y + r.y;
+  x = select(x >= 1.0f, x - 1.0f, x);
+  y = select(y >= 1.0f, y - 1.0f, y);
+  return Float2(x, y);
+}
+
 // Orthonormal basis (t, b, n) about a unit vector n, branch-free (Duff et al. 2017, "Building an
 // Orthonormal Basis, Revisited", JCGT 6(1)); right-handed: cross(t, b) = n.
 struct Basis {

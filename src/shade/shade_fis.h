@@ -14,6 +14,15 @@
 // (shade/sh_irradiance.h; the coefficients already carry A_l / pi).
 //
 // Background pixels (G0.w = 0) show the atlas along the camera ray at level 0.
+//
+// Baselines of the error study (issue 4, item 4), the same pass with a mode:
+//   kFisUnfiltered   the same deterministic samples read at level 0 (no filtering: aliasing);
+//   kFisStochastic   the Hammersley set rotated per pixel (Cranley-Patterson, hashed pixel index),
+//                    read at level 0: plain Monte Carlo BRDF sampling, noise instead of aliasing.
+
+const uint kFisFiltered = 0u;
+const uint kFisUnfiltered = 1u;
+const uint kFisStochastic = 2u;
 
 struct FisFrame {
   Basis basis;  // world shading frame: t, b, n
@@ -31,22 +40,29 @@ FisFrame fisFrame(Float3 nIn, Float3 tIn, Float3 v) {
   return FisFrame(B, basisToLocal(B, v));
 }
 
-Float4 shadeFis(Sampler2D atlas, Float maxLod, Float log2KwhOverN, Float levelBias, uint sampleCount, Float intensity,
-                ShRgb sh, Float4 g0, Float4 g1, Float4 g2, Float3 eye, Float3 ray, Float3 diffuse, Float3 specular,
+Float4 shadeFis(Sampler2D atlas, uint mode, Float maxLod, Float log2KwhOverN, Float levelBias, uint sampleCount,
+                Float intensity, ShRgb sh, Uint pixel, Float4 g0, Float4 g1, Float4 g2, Float3 eye, Float3 ray, Float3 diffuse, Float3 specular,
                 BrdfParams brdf) {
   Mask geometry = g0.w != 0.0f;
   Float3 p = Float3(g0.x, g0.y, g0.z);
   Float3 v = exNormalize(eye - p);
   FisFrame F = fisFrame(Float3(g1.x, g1.y, g1.z), Float3(g2.x, g2.y, g2.z), v);
   PRECISE Float3 sum = Float3(0.0f, 0.0f, 0.0f);
-  for (uint i = 0u; i < sampleCount; i++) {
-    Float2 u = hammersley(Uint(i), Uint(sampleCount));
-    BrdfSample s = sampleBrdf(brdf, F.wo, u);
-    Float3 wi = basisToWorld(F.basis, s.wi);
-    PRECISE Float l = 0.5f * (log2KwhOverN - exLog2(s.pdf * paraboloidJacobian(wi.z)));
-    l = min(max(l, 0.0f) + levelBias, maxLod);  // pdf = 0 (a lost sample, weight 0) gives +inf: the coarsest level
-    Float4 L = textureLod(atlas, paraboloidUv(wi), l);
-    sum = sum + Float3(L.x, L.y, L.z) * s.weight;
+  // Background pixels skip the samples (a vector or invocation with no geometry does no work; the
+  // lanes that run them without geometry are discarded by the select below).
+  IF_ANY(geometry) {
+    Float2 offset = pixelOffset(pixel);
+    for (uint i = 0u; i < sampleCount; i++) {
+      Float2 u = hammersley(Uint(i), Uint(sampleCount));
+      if (mode == kFisStochastic) u = rotatePoint(u, offset);
+      BrdfSample s = sampleBrdf(brdf, F.wo, u);
+      Float3 wi = basisToWorld(F.basis, s.wi);
+      PRECISE Float l = 0.5f * (log2KwhOverN - exLog2(s.pdf * paraboloidJacobian(wi.z)));
+      l = min(max(l, 0.0f) + levelBias, maxLod);  // pdf = 0 (a lost sample, weight 0) gives +inf: the coarsest level
+      if (mode != kFisFiltered) l = Float(0.0f);
+      Float4 L = textureLod(atlas, paraboloidUv(wi), l);
+      sum = sum + Float3(L.x, L.y, L.z) * s.weight;
+    }
   }
   PRECISE Float invN = exDiv(1.0f, Float(sampleCount));
   Float3 irr = shIrradiance(sh, F.basis.n);

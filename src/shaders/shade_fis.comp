@@ -17,7 +17,7 @@ layout(push_constant) uniform Push {
   vec4 eye, fwd, right, down;
   float invW, invH, maxLod, intensity;
   uint width, count, materialCount, sampleCount;
-  float levelConstant, levelBias, pad1, pad2;
+  float levelConstant, levelBias; uint mode, pad2;
 } pc;
 
 void main() {
@@ -28,7 +28,7 @@ void main() {
   BrdfParams bp = BrdfParams(m.kind.x, m.brdf.x, m.brdf.y, m.brdf.z, vec3(0.0f), 1.0f, 0.0f, vec3(0.0f), 1.0f, 0.0f);
   vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
   ShRgb e = ShRgb(sh[0].xyz, sh[1].xyz, sh[2].xyz, sh[3].xyz, sh[4].xyz, sh[5].xyz, sh[6].xyz, sh[7].xyz, sh[8].xyz);
-  vec4 c = shadeFis(atlas, pc.maxLod, pc.levelConstant, pc.levelBias, pc.sampleCount, pc.intensity, e, g.g0, g.g1, g.g2,
+  vec4 c = shadeFis(atlas, pc.mode, pc.maxLod, pc.levelConstant, pc.levelBias, pc.sampleCount, pc.intensity, e, p, g.g0, g.g1, g.g2,
                     pc.eye.xyz, ray, m.diffuse.xyz, m.specular.xyz, bp);
   if (i < pc.count) color[i] = c;
 }

@@ -31,8 +31,8 @@ Setup setUp(const VerifyOptions& opts, std::ostream& out) {
   if (opts.width) s.scene.width = opts.width;
   if (opts.height) s.scene.height = opts.height;
   if (!opts.technique.empty()) s.scene.technique = opts.technique;
-  if (s.scene.technique != "mirror" && s.scene.technique != "fis")
-    throw std::invalid_argument("--technique " + s.scene.technique + ": expected mirror or fis");
+  if (!isTechnique(s.scene.technique))
+    throw std::invalid_argument("--technique " + s.scene.technique + ": expected fis, unfiltered, stochastic, env or mirror");
   vk::ContextOptions co;
   co.device = opts.device;
   co.validation = opts.validate;

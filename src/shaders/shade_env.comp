@@ -1,0 +1,38 @@
+#version 450
+// Deferred shading pass (technique "env": environment importance sampling as directional lights),
+// compute stage: thin entry point around shade/shade_env.h; the light loop in the order of
+// render/passes.cpp (light 0 first, shAdd3). One invocation per pixel, local size 64.
+#extension GL_GOOGLE_include_directive : require
+#include "shade/all.inl"
+
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) uniform sampler2D env;
+struct GbufFis { vec4 g0; vec4 g1; vec4 g2; };  // render/shade_vk.cpp
+layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufFis gbuf[]; };
+struct FisMaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; };  // render/shade_vk.cpp
+layout(std430, set = 0, binding = 2) readonly buffer Materials { FisMaterialGpu materials[]; };
+layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
+struct EnvLight { vec4 dir; vec4 weight; };  // render/env_lights.h
+layout(std430, set = 0, binding = 4) readonly buffer Lights { EnvLight lights[]; };
+layout(push_constant) uniform Push {
+  vec4 eye, fwd, right, down;
+  float invW, invH, maxLod, intensity;
+  uint width, count, materialCount, lightCount;
+} pc;
+
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  uint p = min(i, pc.count - 1u);
+  GbufFis g = gbuf[p];
+  FisMaterialGpu m = materials[materialSlot(g.g0.w, pc.materialCount)];
+  BrdfParams bp = BrdfParams(m.kind.x, m.brdf.x, m.brdf.y, m.brdf.z, vec3(0.0f), 1.0f, 0.0f, vec3(0.0f), 1.0f, 0.0f);
+  vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
+  vec3 sum = vec3(0.0f);
+  if (g.g0.w != 0.0f) {
+    FisFrame F = envFrame(g.g0, g.g1, g.g2, pc.eye.xyz);
+    for (uint j = 0u; j < pc.lightCount; j++)
+      sum = shAdd3(sum, envLightTerm(F, bp, m.diffuse.xyz, m.specular.xyz, lights[j].dir.xyz, lights[j].weight.xyz));
+  }
+  vec4 c = envFinish(env, g.g0, ray, sum, pc.intensity);
+  if (i < pc.count) color[i] = c;
+}
