@@ -8,7 +8,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cache="$root/assets"
 
-pkgs=(build-essential cmake ninja-build pkg-config
+pkgs=(build-essential cmake ninja-build pkg-config fonts-dejavu-core
       libembree-dev libopenimageio-dev openimageio-tools libtbb-dev
       libbenchmark-dev libgtest-dev libgmock-dev
       libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslc spirv-tools

@@ -8,6 +8,7 @@
 #include "compare.h"
 #include "reference/reference.h"
 #include "render/bench.h"
+#include "render/sweep.h"
 #include "render/render.h"
 #include "scene/scene.h"
 #include "verify/verify.h"
@@ -82,6 +83,18 @@ int main(int argc, char** argv) {
   bench->add_option("--directions", bo.directions, "shadow-map directions")->check(CLI::Range(1, 4096));
   bench->add_option("--shadow-size", bo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
   bench->add_option("--device", bo.device, "Vulkan device (substring of its name; default lavapipe)");
+  shadetwin::SweepOptions so;
+  auto* sweep = app.add_subcommand("sweep", "speed against error: techniques x sample counts vs the reference; CSV + plots");
+  sweep->add_option("--scene", so.scene, "scene file");
+  sweep->add_option("--technique", so.techniques, "comma-separated: fis, unfiltered, stochastic, env");
+  sweep->add_option("--samples", so.samples, "comma-separated sample counts");
+  sweep->add_option("--reference", so.reference, "reference EXR (default: render it)");
+  sweep->add_option("--reference-spp", so.referenceSpp, "samples per pixel of the rendered reference")->check(CLI::Range(1, 1 << 20));
+  sweep->add_option("--out", so.out, "output folder");
+  sweep->add_option("--width", so.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+  sweep->add_option("--height", so.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  sweep->add_option("--device", so.device, "Vulkan device (substring of its name; default lavapipe)");
+  sweep->add_flag("!--no-vulkan", so.vulkan, "emulator only");
   bench->add_option("--technique", bo.technique, "shading technique (default: the scene's); passes default to gbuffer,shade");
   bench->add_option("--samples", bo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
   try {
@@ -95,6 +108,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (app.got_subcommand("render")) return shadetwin::renderCommand(ro, std::cout);
+    if (app.got_subcommand("sweep")) return shadetwin::sweepCommand(so, std::cout);
     if (app.got_subcommand("bench")) {
       if (!bo.technique.empty() && bench->get_option("--passes")->count() == 0) bo.passes = "gbuffer,shade";
       return shadetwin::benchCommand(bo, std::cout);

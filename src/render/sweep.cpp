@@ -1,0 +1,172 @@
+#include "render/sweep.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "emu/device_profile.h"
+#include "image_io.h"
+#include "reference/reference.h"
+#include "render/gbuffer.h"
+#include "render/passes_vk.h"
+#include "render/render.h"
+#include "scene/scene.h"
+#include "util/plot.h"
+#include "vk/context.h"
+
+namespace shadetwin {
+namespace {
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> r;
+  std::stringstream ss(s);
+  for (std::string p; std::getline(ss, p, ',');)
+    if (!p.empty()) r.push_back(p);
+  return r;
+}
+
+struct Masked {
+  double rmse = 0, relMse = 0, psnr = 0;
+};
+
+// The metrics of compare.h over the covered pixels only (R, G, B; non-finite values skipped).
+Masked maskedMetrics(const std::vector<float>& a, const std::vector<float>& ref, const GBuffer& g) {
+  double se = 0, rel = 0, peak = 0;
+  size_t n = 0;
+  for (size_t p = 0; p < size_t(g.width) * g.height; ++p) {
+    if (g.texels[p * kGbufFloats + 3] == 0.0f) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double x = a[4 * p + size_t(c)], r = ref[4 * p + size_t(c)];
+      if (!std::isfinite(x) || !std::isfinite(r)) continue;
+      se += (x - r) * (x - r), rel += (x - r) * (x - r) / (r * r + 0.01), peak = std::max(peak, r), ++n;
+    }
+  }
+  Masked m;
+  if (!n) return m;
+  m.rmse = std::sqrt(se / double(n));
+  m.relMse = rel / double(n);
+  m.psnr = se > 0 ? 10 * std::log10(peak * peak / (se / double(n))) : INFINITY;
+  return m;
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+int sweepCommand(const SweepOptions& opts, std::ostream& log) {
+  Scene scene = loadScene(opts.scene);
+  if (opts.width) scene.width = opts.width;
+  if (opts.height) scene.height = opts.height;
+  const std::vector<std::string> techniques = splitList(opts.techniques);
+  std::vector<uint32_t> samples;
+  for (const std::string& s : splitList(opts.samples)) {
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(s.c_str(), &end, 10);
+    if (*end || v < 1 || v > 4096) throw std::invalid_argument("--samples: '" + s + "' is not a count in [1, 4096]");
+    samples.push_back(uint32_t(v));
+  }
+  for (const std::string& t : techniques)
+    if (!isTechnique(t) || t == "mirror")
+      throw std::invalid_argument("--technique: '" + t + "' is not a sampling technique (fis, unfiltered, stochastic, env)");
+  if (techniques.empty() || samples.empty()) throw std::invalid_argument("sweep: no techniques or no sample counts");
+  std::filesystem::create_directories(opts.out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+  log << "sweep " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << scene.environment << "\n";
+
+  // Reference: given, or rendered here (MIS, no visibility: the techniques have none).
+  std::vector<float> ref;
+  if (!opts.reference.empty()) {
+    ImageRGBA r = loadImageRGBA(opts.reference);
+    if (r.width != scene.width || r.height != scene.height)
+      throw std::invalid_argument("--reference " + opts.reference + ": " + std::to_string(r.width) + "x" +
+                                  std::to_string(r.height) + ", the sweep renders " + std::to_string(scene.width) + "x" +
+                                  std::to_string(scene.height));
+    ref = std::move(r.texels);
+    log << "  reference " << opts.reference << "\n";
+  } else {
+    ReferenceOptions ro;
+    ro.spp = opts.referenceSpp;
+    const auto t0 = std::chrono::steady_clock::now();
+    ref = renderReference(scene, EnvImage{env.width, env.height, env.levels[0].data()}, ro);
+    const std::string path = (std::filesystem::path(opts.out) / "reference.exr").string();
+    writeExr(path, scene.width, scene.height, ref);
+    log << "  reference: " << ro.spp << " spp x 2 (MIS), " << std::fixed << std::setprecision(1) << msSince(t0) / 1000
+        << " s, wrote " << path << "\n";
+  }
+
+  const emu::DeviceProfile* dev = &emu::lavapipeProfile();
+  std::unique_ptr<vk::Context> ctx;
+  GBuffer gv;
+  if (opts.vulkan) {
+    vk::ContextOptions co;
+    co.device = opts.device;
+    ctx = std::make_unique<vk::Context>(co);
+    dev = &emu::profileForDevice(ctx->deviceName());
+    gv = gbufferVulkan(*ctx, scene);
+    log << "  Vulkan device " << ctx->deviceName() << " (profile " << dev->name << ")\n";
+  }
+  const GBuffer g = gbufferEmu(scene, *dev);
+  size_t covered = 0;
+  for (size_t p = 0; p < size_t(g.width) * g.height; ++p) covered += g.texels[p * kGbufFloats + 3] != 0.0f;
+  log << "  metrics over the " << covered << " covered pixels\n";
+
+  const std::string csvPath = (std::filesystem::path(opts.out) / "sweep.csv").string();
+  std::ofstream csv(csvPath);
+  if (!csv) throw std::runtime_error("sweep: cannot write " + csvPath);
+  csv << "technique,samples,ms_emu,ms_vulkan,rmse,relmse,psnr,bit_identical,values\n";
+  std::vector<PlotSeries> bySamples, byTime;
+  log << std::fixed;
+  for (const std::string& t : techniques) {
+    scene.technique = t;
+    PlotSeries ps{t, {}, {}}, pt{t, {}, {}};
+    std::unique_ptr<ShadeInputs> inE;
+    for (uint32_t n : samples) {
+      scene.fisSamples = n;
+      if (!inE || t == "env") inE = std::make_unique<ShadeInputs>(shadeInputsEmu(scene, *env.texture, *dev));
+      std::vector<float> img;
+      shadeEmu(scene, g, *inE, *dev, img);  // warm-up
+      auto t0 = std::chrono::steady_clock::now();
+      shadeEmu(scene, g, *inE, *dev, img);
+      const double msEmu = msSince(t0);
+      double msVk = NAN;
+      size_t same = 0;
+      if (ctx) {
+        ShadePassVk pass(*ctx, scene, *inE);
+        const std::vector<float> v = pass.run(gv);
+        msVk = pass.lastMs;
+        for (size_t i = 0; i < v.size(); ++i) same += std::memcmp(&v[i], &img[i], 4) == 0;
+      }
+      const Masked m = maskedMetrics(img, ref, g);
+      csv << t << "," << n << "," << std::setprecision(2) << msEmu << "," << msVk << "," << std::setprecision(6) << m.rmse
+          << "," << m.relMse << "," << std::setprecision(3) << m.psnr << "," << same << "," << img.size() << "\n";
+      log << "  " << std::setw(10) << std::left << t << std::right << std::setw(5) << n << " samples  emu " << std::setprecision(1)
+          << std::setw(8) << msEmu << " ms  vulkan " << std::setw(8) << msVk << " ms  RMSE " << std::setprecision(5)
+          << m.rmse << "  relMSE " << m.relMse << "  PSNR " << std::setprecision(2) << m.psnr << " dB";
+      if (ctx) log << "  " << same << "/" << img.size() << " bit-identical";
+      log << "\n";
+      ps.x.push_back(n), ps.y.push_back(m.rmse), pt.x.push_back(msEmu), pt.y.push_back(m.rmse);
+    }
+    bySamples.push_back(ps), byTime.push_back(pt);
+  }
+  const std::string stem = std::filesystem::path(opts.scene).stem().string();
+  const std::string p1 = (std::filesystem::path(opts.out) / "rmse_vs_samples.png").string();
+  const std::string p2 = (std::filesystem::path(opts.out) / "rmse_vs_time.png").string();
+  std::string w1 = writeLogLogPlot(p1, bySamples, {"RMSE vs samples per pixel, " + stem, "samples N", "RMSE", true});
+  std::string w2 = writeLogLogPlot(p2, byTime, {"RMSE vs emulator shading time, " + stem, "ms per frame (emu)", "RMSE", false});
+  if (!w1.empty()) log << "  warning: " << w1 << "\n";
+  if (!w2.empty()) log << "  warning: " << w2 << "\n";
+  log << "wrote " << csvPath << ", " << p1 << ", " << p2 << "\n";
+  return 0;
+}
+
+}  // namespace shadetwin

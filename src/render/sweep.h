@@ -1,0 +1,28 @@
+// `shadetwin sweep`: speed against error of the shading techniques (issue 4, item 5). For each
+// technique and sample count: the emulator's frame (shading pass timed; G-buffer rendered once),
+// the same frame on a Vulkan device (shading pass timed, submit to read-back) with the count of
+// bit-identical values, and its error against the reference renderer (Embree, MIS, no visibility)
+// over the pixels the G-buffer covers (the techniques differ only there). Writes sweep.csv and two
+// log-log plots (error vs samples, error vs emulator time).
+#pragma once
+#include <cstdint>
+#include <ostream>
+#include <string>
+
+namespace shadetwin {
+
+struct SweepOptions {
+  std::string scene = "scenes/spheres.json";
+  std::string techniques = "fis,unfiltered,stochastic,env";
+  std::string samples = "4,8,16,32,64,128,256";
+  std::string reference;         // EXR of the reference; empty: render it (referenceSpp per pixel)
+  uint32_t referenceSpp = 512;
+  std::string out = "sweep";     // output folder: sweep.csv, rmse_vs_samples.png, rmse_vs_time.png, reference.exr
+  uint32_t width = 0, height = 0;
+  std::string device;            // Vulkan device substring; empty = lavapipe
+  bool vulkan = true;            // --no-vulkan: emulator only
+};
+
+int sweepCommand(const SweepOptions& opts, std::ostream& log);
+
+}  // namespace shadetwin
