@@ -147,7 +147,7 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
         for (size_t i = 0; i < v.size(); ++i) same += std::memcmp(&v[i], &img[i], 4) == 0;
       }
       const Masked m = maskedMetrics(img, ref, g);
-      csv << t << "," << n << "," << std::setprecision(2) << msEmu << "," << msVk << "," << std::setprecision(6) << m.rmse
+      csv << std::fixed << t << "," << n << "," << std::setprecision(2) << msEmu << "," << msVk << "," << std::setprecision(6) << m.rmse
           << "," << m.relMse << "," << std::setprecision(3) << m.psnr << "," << same << "," << img.size() << "\n";
       log << "  " << std::setw(10) << std::left << t << std::right << std::setw(5) << n << " samples  emu " << std::setprecision(1)
           << std::setw(8) << msEmu << " ms  vulkan " << std::setw(8) << msVk << " ms  RMSE " << std::setprecision(5)
