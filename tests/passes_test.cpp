@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "emu/sampler.h"
+#include "image_io.h"
 #include "render/gbuffer.h"
 #include "mips.h"
 #include "render/paraboloid.h"
@@ -169,4 +170,31 @@ TEST(FisPass, BookLevelBiasBlursTheGlossyTerm) {
   const double tv0 = variation(0.0f), tv1 = variation(1.0f), tv3 = variation(3.0f);
   EXPECT_LT(tv1, tv0);
   EXPECT_LT(tv3, tv1);
+}
+
+TEST(FisPass, NonFiniteTexelsAreCountedAndNeverReachTheImage) {
+  // Hard case (issue 4 item 7): the source HDRI has NaN and inf texels. Policy (docs/DESIGN.md s7):
+  // loadEnvironment replaces them by 0 and counts them, before the atlas, the SH and the env lights are
+  // built, so every technique's image stays finite; the count is printed.
+  shadetwin::Scene s = shadetwin::loadScene(std::string(SHADETWIN_SOURCE_DIR) + "/scenes/materials.json");
+  s.width = 96, s.height = 40;
+  const uint32_t W = 128, H = 64;
+  std::vector<float> t(size_t(W) * H * 4, 0.8f);
+  for (size_t i = 0; i < t.size(); i += 97) t[i] = std::nanf("");
+  t[4 * (10 * W + 20)] = INFINITY;
+  t[4 * (40 * W + 70) + 1] = -INFINITY;
+  const std::string path = testing::TempDir() + "nan_env.exr";
+  shadetwin::writeExr(path, W, H, t);
+  std::ostringstream log;
+  const shadetwin::EnvironmentMap env = shadetwin::loadEnvironment(path, log);
+  size_t expected = 0;
+  for (float v : t) expected += !std::isfinite(v);
+  EXPECT_EQ(env.nonFinite, expected);
+  EXPECT_NE(log.str().find(std::to_string(expected) + " non-finite"), std::string::npos) << log.str();
+  const shadetwin::GBuffer g = shadetwin::gbufferEmu(s, dev());
+  for (const char* technique : {"fis", "unfiltered", "stochastic", "env"}) {
+    s.technique = technique;
+    const std::vector<float> img = shadetwin::shadeEmu(s, g, shadetwin::shadeInputsEmu(s, *env.texture, dev()), dev());
+    for (size_t i = 0; i < img.size(); ++i) ASSERT_TRUE(std::isfinite(img[i])) << technique << " value " << i;
+  }
 }
