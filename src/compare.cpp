@@ -11,12 +11,17 @@ ImageMetrics compareImages(const ImageRGBA& a, const ImageRGBA& b) {
   if (a.width != b.width || a.height != b.height)
     throw std::invalid_argument("image sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) +
                                 " vs " + std::to_string(b.width) + "x" + std::to_string(b.height));
+  return imageMetrics(a.texels, b.texels);
+}
+
+ImageMetrics imageMetrics(std::span<const float> a, std::span<const float> b, std::span<const uint8_t> covered) {
+  if (a.size() != b.size()) throw std::invalid_argument("image metrics: pixel counts differ");
   ImageMetrics m;
   double se = 0, rel = 0;
-  const size_t n = size_t(a.width) * a.height;
+  const size_t n = a.size() / 4;
   for (size_t p = 0; p < n; ++p)
-    for (int k = 0; k < 3; ++k) {
-      const double x = a.texels[4 * p + size_t(k)], y = b.texels[4 * p + size_t(k)];
+    for (int k = 0; k < 3 && (covered.empty() || covered[p]); ++k) {
+      const double x = a[4 * p + size_t(k)], y = b[4 * p + size_t(k)];
       if (!std::isfinite(x) || !std::isfinite(y)) {
         ++m.nonFinite;
         continue;

@@ -7,6 +7,8 @@
 // Values that are not finite in either image are not averaged; they are counted and reported.
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <ostream>
 #include <string>
 
@@ -21,6 +23,10 @@ struct ImageMetrics {
 
 /// Throws std::invalid_argument naming both sizes when they differ.
 ImageMetrics compareImages(const ImageRGBA& a, const ImageRGBA& reference);
+/// The same metrics over RGBA float pixels of equal count; with `covered` (one flag per pixel) only
+/// the flagged pixels count (e.g. the pixels a G-buffer covers).
+ImageMetrics imageMetrics(std::span<const float> a, std::span<const float> reference,
+                          std::span<const uint8_t> covered = {});
 int compareCommand(const std::string& a, const std::string& b, std::ostream& log);
 
 }  // namespace shadetwin

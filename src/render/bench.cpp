@@ -12,6 +12,7 @@
 #include "render/passes_vk.h"
 #include "render/render.h"
 #include "scene/scene.h"
+#include "util/timer.h"
 #include "vk/context.h"
 
 namespace shadetwin {
@@ -20,11 +21,6 @@ namespace {
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-template <class F> double timeMs(F f) {
-  auto t0 = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace

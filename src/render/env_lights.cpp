@@ -6,6 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "shade/instantiate.h"
+
 namespace shadetwin {
 
 EnvLights envLights(const emu::Texture& env, uint32_t n) {
@@ -33,14 +35,8 @@ EnvLights envLights(const emu::Texture& env, uint32_t n) {
   if (!(total > 0) || n == 0) return L;
   L.data.reserve(size_t(n) * 8);
   for (uint32_t i = 0; i < n; ++i) {
-    // Hammersley point i of n: ((i + 1/2) / n, radical inverse of i).
-    uint32_t r = i;
-    r = (r << 16) | (r >> 16);
-    r = ((r & 0x00ff00ffu) << 8) | ((r & 0xff00ff00u) >> 8);
-    r = ((r & 0x0f0f0f0fu) << 4) | ((r & 0xf0f0f0f0u) >> 4);
-    r = ((r & 0x33333333u) << 2) | ((r & 0xccccccccu) >> 2);
-    r = ((r & 0x55555555u) << 1) | ((r & 0xaaaaaaaau) >> 1);
-    const double u1 = (i + 0.5) / n, u2 = r * 0x1p-32;
+    // Hammersley point i of n: ((i + 1/2) / n, the shared 24-bit radical inverse of shade/sampling.h).
+    const double u1 = (i + 0.5) / n, u2 = shade::scalar::radicalInverse2(i);
     const uint32_t y = uint32_t(std::upper_bound(rowCdf.begin(), rowCdf.end(), u1 * total) - rowCdf.begin());
     const uint32_t yy = std::min(y, H - 1);
     const double rowStart = yy ? rowCdf[yy - 1] : 0.0, rowSum = rowCdf[yy] - rowStart;

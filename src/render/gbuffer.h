@@ -9,6 +9,7 @@
 #include "emu/raster.h"
 #include "emu/texture.h"
 #include "render/shade_inputs.h"
+#include "shade/sampler_bridge.h"
 #include "scene/scene.h"
 
 namespace shadetwin {
@@ -73,6 +74,10 @@ struct BrdfGpu {
   float e, ax, ay;
 };
 BrdfGpu brdfOf(const Material& m);
+
+/// Emulated sampler of an environment texture: trilinear, clamp in v, repeat (equirectangular map) or
+/// clamp (paraboloid atlas) in u; the emulator's side of environmentSamplerInfo (render/passes_vk.h).
+shade::Sampler2D environmentSampler(const emu::Texture& tex, const emu::DeviceProfile& dev, bool repeatU);
 
 /// Mode of the FIS pass for the scene's technique (kFisFiltered / kFisUnfiltered / kFisStochastic).
 uint32_t fisMode(const Scene& scene);

@@ -11,6 +11,7 @@
 #include "emu/fpenv.h"
 #include "mips.h"
 #include "shade/instantiate.h"
+#include "render/gbuffer.h"
 #include "render/passes_vk.h"
 #include "vk/context.h"
 
@@ -39,11 +40,7 @@ std::vector<float> paraboloidAtlasEmu(const emu::Texture& env, const emu::Device
   using I = emu::I32<8>;
   const size_t w = 2 * size_t(faceSize), n = w * faceSize;
   std::vector<float> out(4 * n);
-  shade::Sampler2D s;
-  s.tex = &env;
-  s.dev = &dev;
-  s.desc.addressU = emu::AddressMode::Repeat;
-  s.desc.addressV = emu::AddressMode::ClampToEdge;
+  const shade::Sampler2D s = environmentSampler(env, dev, true);
   const F ew(float(env.width())), eh(float(env.height()));
   const size_t blocks = (n + 7) / 8;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 64), [&](const tbb::blocked_range<size_t>& r) {

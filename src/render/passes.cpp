@@ -12,6 +12,7 @@
 
 #include "emu/fpenv.h"
 #include "shade/instantiate.h"
+#include "util/timer.h"
 
 namespace shadetwin {
 
@@ -40,9 +41,6 @@ using V2f = shade::V2<float>;
 using V3f = shade::V3<float>;
 using V4f = shade::V4<float>;
 V4f col(const float* m, int c) { return V4f(m[4 * c], m[4 * c + 1], m[4 * c + 2], m[4 * c + 3]); }
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 }  // namespace
 
 GBuffer gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GbufferStats* stats) {
@@ -134,6 +132,15 @@ BrdfGpu brdfOf(const Material& m) {
                               "' cannot be importance-sampled by fis (phong, blinn, ward or ggx)");
 }
 
+shade::Sampler2D environmentSampler(const emu::Texture& tex, const emu::DeviceProfile& dev, bool repeatU) {
+  shade::Sampler2D s;
+  s.tex = &tex;
+  s.dev = &dev;
+  s.desc.addressU = repeatU ? emu::AddressMode::Repeat : emu::AddressMode::ClampToEdge;
+  s.desc.addressV = emu::AddressMode::ClampToEdge;
+  return s;
+}
+
 uint32_t fisMode(const Scene& scene) {
   if (scene.technique == "unfiltered") return shade::scalar::kFisUnfiltered;
   if (scene.technique == "stochastic") return shade::scalar::kFisStochastic;
@@ -160,17 +167,6 @@ struct PixelBlock {
 };
 
 V3x splat(const float v[3]) { return V3x(F8(v[0]), F8(v[1]), F8(v[2])); }
-
-// Per-lane RGB of each lane's material: pick(material) -> Vec3.
-template <class Pick>
-V3x materialLanes(const PixelBlock& p, const std::vector<Material>& mats, Pick pick) {
-  V3x r;
-  for (int l = 0; l < 8; ++l) {
-    const Vec3& c = pick(mats[p.slot[l]]);
-    r.x.set(l, c[0]), r.y.set(l, c[1]), r.z.set(l, c[2]);
-  }
-  return r;
-}
 
 // The compute-stage loop shared by the techniques: TBB over blocks of 8 pixels in the device's
 // denormal mode; shade(block) returns the 4 output floats of each lane.
@@ -208,48 +204,52 @@ void shadePixelBlocks(const Scene& scene, const GBuffer& g, const emu::DevicePro
   });
 }
 
-// Per-lane BRDF parameters of each lane's material (Lafortune lobes unused: brdfOf rejects it).
-shade::x8::BrdfParams brdfLanes(const PixelBlock& p, const std::vector<BrdfGpu>& brdfs) {
-  shade::x8::BrdfParams bp{};
+// What the shading kernels read of a material slot (render/shade_vk.cpp MaterialGpu); a scene without
+// materials has one default slot. The BRDF only for the sampling techniques (brdfOf throws for mirror).
+struct SlotData {
+  Vec3 diffuse, specular;
+  BrdfGpu brdf;
+};
+std::vector<SlotData> materialTable(const Scene& scene, bool withBrdf) {
+  const std::vector<Material> mats = scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
+  std::vector<SlotData> t;
+  for (const Material& m : mats) t.push_back({m.diffuse, m.specular, withBrdf ? brdfOf(m) : BrdfGpu{}});
+  return t;
+}
+
+// Each lane's material: kd, ks and BRDF parameters (Lafortune lobes unused: brdfOf rejects it).
+struct LaneMaterials {
+  V3x diffuse, specular;
+  shade::x8::BrdfParams brdf;
+};
+LaneMaterials laneMaterials(const PixelBlock& p, const std::vector<SlotData>& table) {
+  V3x kd, ks;
   emu::U32<8> kind(0u);
+  F8 e, ax, ay;
   for (int l = 0; l < 8; ++l) {
-    const BrdfGpu& q = brdfs[p.slot[l]];
-    kind.set(l, q.kind);
-    bp.e.set(l, q.e), bp.ax.set(l, q.ax), bp.ay.set(l, q.ay);
+    const SlotData& m = table[p.slot[l]];
+    kd.x.set(l, m.diffuse[0]), kd.y.set(l, m.diffuse[1]), kd.z.set(l, m.diffuse[2]);
+    ks.x.set(l, m.specular[0]), ks.y.set(l, m.specular[1]), ks.z.set(l, m.specular[2]);
+    kind.set(l, m.brdf.kind), e.set(l, m.brdf.e), ax.set(l, m.brdf.ax), ay.set(l, m.brdf.ay);
   }
-  bp.kind = kind;
-  const V3x zero(F8(0.0f), F8(0.0f), F8(0.0f));
-  bp.c0 = zero, bp.c1 = zero, bp.n0 = F8(1.0f), bp.n1 = F8(1.0f), bp.rho0 = F8(0.0f), bp.rho1 = F8(0.0f);
-  return bp;
+  return {kd, ks, shade::x8::brdfParams(kind, e, ax, ay)};
 }
 
-std::vector<Material> materialSlots(const Scene& scene) {
-  return scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
-}
-
-// Technique env: the light loop of shade_env.comp (light 0 first, shAdd3) around the shared terms.
+// Technique env: the light loop of shade_env.comp (light 0 first, one envAddLight each).
 void shadeEnvEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
                  std::vector<float>& out) {
-  shade::Sampler2D s;
-  s.tex = in.environment;
-  s.dev = &dev;
-  s.desc.addressU = emu::AddressMode::Repeat;
-  s.desc.addressV = emu::AddressMode::ClampToEdge;
+  const shade::Sampler2D s = environmentSampler(*in.environment, dev, true);
   const F8 intensity(scene.environmentIntensity);
-  const std::vector<Material> mats = materialSlots(scene);
-  std::vector<BrdfGpu> brdfs;
-  for (const Material& m : mats) brdfs.push_back(brdfOf(m));
+  const std::vector<SlotData> mats = materialTable(scene, true);
   const std::vector<float>& L = in.lights.data;
   shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
-    const shade::x8::BrdfParams bp = brdfLanes(p, brdfs);
-    const V3x kd = materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.diffuse; });
-    const V3x ks = materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.specular; });
+    const LaneMaterials m = laneMaterials(p, mats);
     V3x sum(F8(0.0f), F8(0.0f), F8(0.0f));
     const emu::Mask<8> geometry = p.g0.w != F8(0.0f);
     if (anyLane(geometry)) {  // IF_ANY, as shade_env.comp's per-invocation if
       const auto F = shade::x8::envFrame(p.g0, p.g1, p.g2, p.eye);
       for (uint32_t j = 0; j < in.lights.count; ++j)
-        sum = shade::x8::shAdd3(sum, shade::x8::envLightTerm(F, bp, kd, ks, splat(&L[8 * j]), splat(&L[8 * j + 4])));
+        sum = shade::x8::envAddLight(sum, F, m.brdf, m.diffuse, m.specular, splat(&L[8 * j]), splat(&L[8 * j + 4]));
     }
     return shade::x8::envFinish(s, p.g0, p.ray, sum, intensity);
   });
@@ -258,25 +258,18 @@ void shadeEnvEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
 void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
                  std::vector<float>& out) {
   const emu::Texture& atlas = *in.atlas;
-  shade::Sampler2D s;
-  s.tex = &atlas;
-  s.dev = &dev;
-  s.desc.addressU = emu::AddressMode::ClampToEdge;
-  s.desc.addressV = emu::AddressMode::ClampToEdge;
+  const shade::Sampler2D s = environmentSampler(atlas, dev, false);  // the atlas clamps in u too
   const F8 maxLod(float(atlas.levelCount() - 1)), levelC(fisLevelConstant(scene)), bias(scene.fisLevelBias),
       intensity(scene.environmentIntensity);
   V3x c[9];
   for (int k = 0; k < 9; ++k) c[k] = splat(&in.sh.c[3 * size_t(k)]);
   const shade::x8::ShRgb sh{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8]};
   const uint32_t mode = fisMode(scene);
-  const std::vector<Material> mats = materialSlots(scene);
-  std::vector<BrdfGpu> brdfs;
-  for (const Material& m : mats) brdfs.push_back(brdfOf(m));
+  const std::vector<SlotData> mats = materialTable(scene, true);
   shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
-    const shade::x8::BrdfParams bp = brdfLanes(p, brdfs);
-    return shade::x8::shadeFis(s, mode, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.pixel, p.g0, p.g1, p.g2, p.eye, p.ray,
-                               materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.diffuse; }),
-                               materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.specular; }), bp);
+    const LaneMaterials m = laneMaterials(p, mats);
+    return shade::x8::shadeFis(s, mode, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.pixel, p.g0, p.g1, p.g2,
+                               p.eye, p.ray, m.diffuse, m.specular, m.brdf);
   });
 }
 }  // namespace
@@ -286,17 +279,12 @@ void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const
   if (usesFisPass(scene.technique)) return shadeFisEmu(scene, g, in, dev, out);
   if (scene.technique == "env") return shadeEnvEmu(scene, g, in, dev, out);
   const emu::Texture& env = *in.environment;
-  shade::Sampler2D envS;
-  envS.tex = &env;
-  envS.dev = &dev;
-  envS.desc.addressU = emu::AddressMode::Repeat;
-  envS.desc.addressV = emu::AddressMode::ClampToEdge;
+  const shade::Sampler2D envS = environmentSampler(env, dev, true);
   const F8 maxLod(float(env.levelCount() - 1)), intensity(scene.environmentIntensity);
-  const std::vector<Material> mats = materialSlots(scene);
+  const std::vector<SlotData> mats = materialTable(scene, false);
   shadePixelBlocks(scene, g, dev, 64, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
-    return shade::x8::shadeMirror(envS, maxLod, intensity, p.g0, p.g1, p.eye, p.ray,
-                                  materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.diffuse; }),
-                                  materialLanes(p, mats, [](const Material& m) -> const Vec3& { return m.specular; }));
+    const LaneMaterials m = laneMaterials(p, mats);
+    return shade::x8::shadeMirror(envS, maxLod, intensity, p.g0, p.g1, p.eye, p.ray, m.diffuse, m.specular);
   });
 }
 

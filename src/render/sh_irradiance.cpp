@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "emu/fpenv.h"
+#include "render/gbuffer.h"
 #include "render/passes_vk.h"
 #include "shade/instantiate.h"
 #include "vk/context.h"
@@ -58,9 +59,7 @@ ShIrradiance shIrradianceEmu(const emu::Texture& env, const emu::DeviceProfile& 
   using I = emu::I32<8>;
   const int32_t w = int32_t(env.width()), h = int32_t(env.height());
   std::vector<float> rows(size_t(h) * 9 * 4, 0.0f);
-  shade::Sampler2D s;
-  s.tex = &env;
-  s.dev = &dev;
+  const shade::Sampler2D s = environmentSampler(env, dev, true);  // texelFetch ignores the sampler state
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, (h + 7) / 8, 1), [&](const tbb::blocked_range<int32_t>& r) {
     emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
     for (int32_t b = r.begin(); b != r.end(); ++b) {

@@ -3,23 +3,15 @@
 #include <chrono>
 
 #include "render/paraboloid.h"
+#include "util/timer.h"
 
 namespace shadetwin {
-namespace {
-template <class F>
-double timed(F&& f) {
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
-
 ShadeInputs shadeInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
   ShadeInputs in;
   in.environment = &env;
   if (usesFisPass(scene.technique)) {
-    in.atlasMs = timed([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureEmu(env, dev, scene.fisFaceSize)); });
-    in.shMs = timed([&] { in.sh = shIrradianceEmu(env, dev); });
+    in.atlasMs = timeMs([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureEmu(env, dev, scene.fisFaceSize)); });
+    in.shMs = timeMs([&] { in.sh = shIrradianceEmu(env, dev); });
   }
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
   return in;
@@ -29,8 +21,8 @@ ShadeInputs shadeInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::T
   ShadeInputs in;
   in.environment = &env;
   if (usesFisPass(scene.technique)) {
-    in.atlasMs = timed([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureVulkan(ctx, env, scene.fisFaceSize)); });
-    in.shMs = timed([&] { in.sh = shIrradianceVulkan(ctx, env); });
+    in.atlasMs = timeMs([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureVulkan(ctx, env, scene.fisFaceSize)); });
+    in.shMs = timeMs([&] { in.sh = shIrradianceVulkan(ctx, env); });
   }
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
   return in;

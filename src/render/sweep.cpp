@@ -1,5 +1,6 @@
 #include "render/sweep.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "emu/device_profile.h"
+#include "compare.h"
 #include "image_io.h"
 #include "reference/reference.h"
 #include "render/gbuffer.h"
@@ -20,6 +22,7 @@
 #include "render/render.h"
 #include "scene/scene.h"
 #include "util/plot.h"
+#include "util/timer.h"
 #include "vk/context.h"
 
 namespace shadetwin {
@@ -33,33 +36,6 @@ std::vector<std::string> splitList(const std::string& s) {
   return r;
 }
 
-struct Masked {
-  double rmse = 0, relMse = 0, psnr = 0;
-};
-
-// The metrics of compare.h over the covered pixels only (R, G, B; non-finite values skipped).
-Masked maskedMetrics(const std::vector<float>& a, const std::vector<float>& ref, const GBuffer& g) {
-  double se = 0, rel = 0, peak = 0;
-  size_t n = 0;
-  for (size_t p = 0; p < size_t(g.width) * g.height; ++p) {
-    if (g.texels[p * kGbufFloats + 3] == 0.0f) continue;
-    for (int c = 0; c < 3; ++c) {
-      const double x = a[4 * p + size_t(c)], r = ref[4 * p + size_t(c)];
-      if (!std::isfinite(x) || !std::isfinite(r)) continue;
-      se += (x - r) * (x - r), rel += (x - r) * (x - r) / (r * r + 0.01), peak = std::max(peak, r), ++n;
-    }
-  }
-  Masked m;
-  if (!n) return m;
-  m.rmse = std::sqrt(se / double(n));
-  m.relMse = rel / double(n);
-  m.psnr = se > 0 ? 10 * std::log10(peak * peak / (se / double(n))) : INFINITY;
-  return m;
-}
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 }  // namespace
 
 int sweepCommand(const SweepOptions& opts, std::ostream& log) {
@@ -116,9 +92,9 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
     log << "  Vulkan device " << ctx->deviceName() << " (profile " << dev->name << ")\n";
   }
   const GBuffer g = gbufferEmu(scene, *dev);
-  size_t covered = 0;
-  for (size_t p = 0; p < size_t(g.width) * g.height; ++p) covered += g.texels[p * kGbufFloats + 3] != 0.0f;
-  log << "  metrics over the " << covered << " covered pixels\n";
+  std::vector<uint8_t> covered(size_t(g.width) * g.height);  // the techniques differ only where geometry is
+  for (size_t p = 0; p < covered.size(); ++p) covered[p] = g.texels[p * kGbufFloats + 3] != 0.0f;
+  log << "  metrics over the " << std::count(covered.begin(), covered.end(), 1) << " covered pixels\n";
 
   const std::string csvPath = (std::filesystem::path(opts.out) / "sweep.csv").string();
   std::ofstream csv(csvPath);
@@ -146,7 +122,7 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
         msVk = pass.lastMs;
         for (size_t i = 0; i < v.size(); ++i) same += std::memcmp(&v[i], &img[i], 4) == 0;
       }
-      const Masked m = maskedMetrics(img, ref, g);
+      const ImageMetrics m = imageMetrics(img, ref, covered);
       csv << std::fixed << t << "," << n << "," << std::setprecision(2) << msEmu << "," << msVk << "," << std::setprecision(6) << m.rmse
           << "," << m.relMse << "," << std::setprecision(3) << m.psnr << "," << same << "," << img.size() << "\n";
       log << "  " << std::setw(10) << std::left << t << std::right << std::setw(5) << n << " samples  emu " << std::setprecision(1)

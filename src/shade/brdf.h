@@ -54,6 +54,12 @@ struct BrdfParams {
   Float rho1;
 };
 
+// Parameters of a Phong / Blinn-Phong / Ward / GGX material (no Lafortune lobes: rho = 0).
+BrdfParams brdfParams(Uint kind, Float e, Float ax, Float ay) {
+  Float3 zero = Float3(0.0f, 0.0f, 0.0f);
+  return BrdfParams(kind, e, ax, ay, zero, Float(1.0f), Float(0.0f), zero, Float(1.0f), Float(0.0f));
+}
+
 struct BrdfSample {
   Float3 wi;
   Float pdf;

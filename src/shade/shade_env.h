@@ -10,16 +10,17 @@
 // the Monte Carlo estimate of the rendering equation without visibility (as FIS). Every pixel uses
 // the same N lights: the error is structured (banding) rather than noise.
 //
-// The sum over lights runs in the entry points (GLSL src/shaders/shade_env.comp, C++
-// render/passes.cpp), light 0 first, each term added by shAdd3: the same order in both builds.
+// The loop over lights is the entry points' (GLSL src/shaders/shade_env.comp, C++ render/passes.cpp:
+// a light list is a buffer there), light 0 first, each step one envAddLight: the same order in both
+// builds.
 
-// Contribution of one light (direction `dir`, weight `weight`, world space) to a pixel.
-Float3 envLightTerm(FisFrame F, BrdfParams brdf, Float3 diffuse, Float3 specular, Float3 dir, Float3 weight) {
+// sum + the contribution of one light (direction `dir`, weight `weight`, world space) to a pixel.
+Float3 envAddLight(Float3 sum, FisFrame F, BrdfParams brdf, Float3 diffuse, Float3 specular, Float3 dir, Float3 weight) {
   Float3 wi = basisToLocal(F.basis, dir);
   Float fs = brdfEval(brdf, F.wo, wi);
   PRECISE Float3 f = diffuse * kBrdfInvPi + specular * fs;
   PRECISE Float3 c = f * (max(wi.z, 0.0f)) * weight;
-  return select(wi.z > 0.0f, c, Float3(0.0f, 0.0f, 0.0f));
+  return shAdd3(sum, select(wi.z > 0.0f, c, Float3(0.0f, 0.0f, 0.0f)));
 }
 
 // The pixel's shading frame (as FIS) for the light loop.

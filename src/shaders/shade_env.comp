@@ -1,7 +1,7 @@
 #version 450
 // Deferred shading pass (technique "env": environment importance sampling as directional lights),
 // compute stage: thin entry point around shade/shade_env.h; the light loop in the order of
-// render/passes.cpp (light 0 first, shAdd3). One invocation per pixel, local size 64.
+// render/passes.cpp (light 0 first, one envAddLight each). One invocation per pixel, local size 64.
 #extension GL_GOOGLE_include_directive : require
 #include "shade/all.inl"
 
@@ -25,13 +25,13 @@ void main() {
   uint p = min(i, pc.count - 1u);
   GbufFis g = gbuf[p];
   FisMaterialGpu m = materials[materialSlot(g.g0.w, pc.materialCount)];
-  BrdfParams bp = BrdfParams(m.kind.x, m.brdf.x, m.brdf.y, m.brdf.z, vec3(0.0f), 1.0f, 0.0f, vec3(0.0f), 1.0f, 0.0f);
+  BrdfParams bp = brdfParams(m.kind.x, m.brdf.x, m.brdf.y, m.brdf.z);
   vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
   vec3 sum = vec3(0.0f);
   if (g.g0.w != 0.0f) {
     FisFrame F = envFrame(g.g0, g.g1, g.g2, pc.eye.xyz);
     for (uint j = 0u; j < pc.lightCount; j++)
-      sum = shAdd3(sum, envLightTerm(F, bp, m.diffuse.xyz, m.specular.xyz, lights[j].dir.xyz, lights[j].weight.xyz));
+      sum = envAddLight(sum, F, bp, m.diffuse.xyz, m.specular.xyz, lights[j].dir.xyz, lights[j].weight.xyz);
   }
   vec4 c = envFinish(env, g.g0, ray, sum, pc.intensity);
   if (i < pc.count) color[i] = c;

@@ -25,7 +25,7 @@ void main() {
   uint p = min(i, pc.count - 1u);
   GbufFis g = gbuf[p];
   FisMaterialGpu m = materials[materialSlot(g.g0.w, pc.materialCount)];
-  BrdfParams bp = BrdfParams(m.kind.x, m.brdf.x, m.brdf.y, m.brdf.z, vec3(0.0f), 1.0f, 0.0f, vec3(0.0f), 1.0f, 0.0f);
+  BrdfParams bp = brdfParams(m.kind.x, m.brdf.x, m.brdf.y, m.brdf.z);
   vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
   ShRgb e = ShRgb(sh[0].xyz, sh[1].xyz, sh[2].xyz, sh[3].xyz, sh[4].xyz, sh[5].xyz, sh[6].xyz, sh[7].xyz, sh[8].xyz);
   vec4 c = shadeFis(atlas, pc.mode, pc.maxLod, pc.levelConstant, pc.levelBias, pc.sampleCount, pc.intensity, e, p, g.g0, g.g1, g.g2,
