@@ -4,6 +4,8 @@
 #   assets/hdri/*.exr        CC0 studio-light worlds from Debian's blender-data (forest, courtyard, ...)
 #   assets/hdri/LICENSE      their licence text
 #   assets/npm/bunny, teapot the npm packages `bunny` and `teapot` (meshes)
+#   assets/textures/*.exr    material maps generated with oiiotool (test patterns, not fetched): a
+#                            checker albedo and a roughness ramp, 512x512 float
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cache="$root/assets"
@@ -43,4 +45,10 @@ for m in bunny teapot; do
        tar -xzf "$tgz" -C "$m" --strip-components=1 && rm -f "$tgz")
   fi
 done
+mkdir -p "$cache/textures"
+if [ ! -f "$cache/textures/roughness_ramp.exr" ]; then
+  oiiotool --pattern checker:width=32:height=32:color1=0.9,0.6,0.2:color2=0.15,0.25,0.6 512x512 3 -d float \
+    -o "$cache/textures/checker.exr"
+  oiiotool --pattern fill:left=0.1,0.1,0.1:right=1,1,1 512x512 3 -d float -o "$cache/textures/roughness_ramp.exr"
+fi
 echo "setup: assets in $cache: $(ls "$cache/hdri" | grep -c exr) HDRIs, meshes: $(ls "$cache/npm" | tr '\n' ' ')"

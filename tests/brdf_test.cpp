@@ -294,6 +294,25 @@ TEST(Brdf, DefinitionsMatchTheReferenceRenderer) {
     }
     EXPECT_GT(n, 200);
   }
+  // Lafortune, two lobes: the scene's lobes reach both through the same parameters.
+  RefBrdf r;
+  r.lobe = Lobe::Lafortune;
+  r.lobes[0] = {{-0.9, -0.9, 1.0}, 20, 4};
+  r.lobes[1] = {{0.3, 0.3, 0.5}, 2, 1};
+  const sc::BrdfParams p = lafortune(V3f(-0.9f, -0.9f, 1), 20, 4, V3f(0.3f, 0.3f, 0.5f), 2, 1);
+  int n = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const double ct = U(rng), st = std::sqrt(1 - ct * ct), ph = 2 * kPi * U(rng);
+    const double co = 0.05 + 0.95 * U(rng), so = std::sqrt(1 - co * co);
+    const D3 wi{st * std::cos(ph), st * std::sin(ph), ct}, wo{so, 0, co};
+    const V3f wif(float(wi.x), float(wi.y), float(wi.z)), wof(float(wo.x), float(wo.y), float(wo.z));
+    const double fr = r.glossy(wi, wo), pr = r.glossyPdf(wi, wo);
+    if (fr < 1e-3 || pr < 1e-3) continue;
+    EXPECT_NEAR(sc::brdfEval(p, wof, wif) / fr, 1.0, 1e-3);
+    EXPECT_NEAR(sc::brdfPdf(p, wof, wif) / pr, 1.0, 1e-3);
+    ++n;
+  }
+  EXPECT_GT(n, 200);
 }
 
 TEST(Brdf, SimdBuildAgreesWithScalarBitForBit) {

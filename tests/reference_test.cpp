@@ -29,6 +29,10 @@ RefBrdf glossyOnly(Lobe lobe) {
   for (int k = 0; k < 3; ++k) b.kd[k] = 0, b.ks[k] = 1;
   b.exponent = 20;
   b.ax = 0.3, b.ay = lobe == Lobe::Ward ? 0.5 : 0.3;
+  // Lafortune: a 60%-normalized Phong-like lobe about the mirror direction plus a broad
+  // forward-leaning lobe (Cx, Cy > 0) of exponent 4.
+  b.lobes[0] = {{-1, -1, 1}, 20, 0.6 * 22 / (2 * std::numbers::pi)};
+  b.lobes[1] = {{0.5, 0.5, 0.8}, 4, 0.5};
   return b;
 }
 
@@ -52,13 +56,13 @@ TEST(ReferenceBrdf, SamplingMatchesPdfAndAlbedo) {
   // Monte Carlo albedo E[f cos / pdf] with sample() equals the quadrature of f cos (so sample()
   // draws from pdf()); (c) energy conservation: albedo <= 1.
   const D3 views[2] = {{0, 0, 1}, {std::sin(0.8), 0, std::cos(0.8)}};
-  for (Lobe lobe : {Lobe::Phong, Lobe::Blinn, Lobe::Ggx, Lobe::Ward}) {
+  for (Lobe lobe : {Lobe::Phong, Lobe::Blinn, Lobe::Ggx, Lobe::Ward, Lobe::Lafortune}) {
     const RefBrdf b = glossyOnly(lobe);
     for (const D3& wo : views) {
       const double pdfMass = hemisphere([&](D3 wi) { return b.glossyPdf(wi, wo); });
       const double albedo = hemisphere([&](D3 wi) { return b.glossy(wi, wo) * wi.z; });
       EXPECT_LE(pdfMass, 1.0 + 2e-3) << int(lobe);
-      if (wo.z == 1.0 && lobe != Lobe::Ggx && lobe != Lobe::Ward) {
+      if (wo.z == 1.0 && lobe != Lobe::Ggx && lobe != Lobe::Ward && lobe != Lobe::Lafortune) {
         EXPECT_NEAR(pdfMass, 1.0, 3e-3) << int(lobe);
       }
       // The (e + 8) / (8 pi) Blinn-Phong normalization is the usual approximation: it reflects a
@@ -193,7 +197,7 @@ TEST(Reference, DeterministicAcrossThreadCounts) {
   EXPECT_NE(0, std::memcmp(ref.data(), other.data(), ref.size() * 4));
 }
 
-TEST(Reference, UnsupportedBrdfNamesTheMaterial) {
+TEST(Reference, LafortuneWithoutLobesNamesTheMaterial) {
   TestScene t = furnace("lafortune", 0.5f, 0.5f);
   t.scene.materials[0].name = "lf";
   try {
@@ -201,8 +205,24 @@ TEST(Reference, UnsupportedBrdfNamesTheMaterial) {
     FAIL() << "expected an error";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("'lf'"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("lafortune"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("lobes"), std::string::npos) << e.what();
   }
+}
+
+TEST(Reference, LafortunePhongLobeMatchesPhong) {
+  // One Lafortune lobe with C = (-1, -1, 1), n = e, rho = (e + 2) / (2 pi) is normalized Phong: the two
+  // reference images agree to their Monte Carlo noise (same seed, same sample stream).
+  TestScene a = furnace("phong", 0.2f, 0.8f), b = furnace("lafortune", 0.2f, 0.8f);
+  a.scene.materials[0].exponent = 30;
+  b.scene.materials[0].lobes = {{{-1, -1, 1}, 30, float(32 / (2 * std::numbers::pi))}};
+  for (TestScene* t : {&a, &b})
+    for (size_t i = 0; i < t->env.size(); i += 4) t->env[i] = 1.0f + float(i % 256) / 64;  // varying red
+  shadetwin::ReferenceOptions o;
+  o.spp = 64;
+  const auto ia = shadetwin::renderReference(a.scene, a.img(), o), ib = shadetwin::renderReference(b.scene, b.img(), o);
+  double worst = 0;
+  for (size_t i = 0; i < ia.size(); ++i) worst = std::max(worst, double(std::fabs(ia[i] - ib[i])) / (1e-3 + std::fabs(ia[i])));
+  EXPECT_LT(worst, 1e-4);
 }
 
 TEST(Compare, Metrics) {

@@ -82,6 +82,36 @@ TEST(Scene, ErrorsNameFileKeyAndExpectation) {
   EXPECT_NE(errorOf(src("scenes/missing.json")).find("cannot open scene file"), std::string::npos);
 }
 
+TEST(Scene, LafortuneLobesAndMaterialMaps) {
+  const std::string head = R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/forest.exr"}, "objects": [{"mesh": "sphere", "material": "m"}], "materials": [)";
+  auto scene = [&](const std::string& name, const std::string& material) { return writeTemp(name, head + material + "]}"); };
+  std::string e = errorOf(scene("l1.json", R"({"name": "m", "brdf": "lafortune"})"));
+  EXPECT_NE(e.find("materials[0].lobes: missing"), std::string::npos) << e;
+  e = errorOf(scene("l2.json", R"({"name": "m", "brdf": "ggx", "lobes": [{"c": [-1, -1, 1], "n": 10, "rho": 1}]})"));
+  EXPECT_NE(e.find("only a lafortune material has lobes"), std::string::npos) << e;
+  e = errorOf(scene("l3.json", R"({"name": "m", "brdf": "lafortune", "lobes": [{}, {}, {}]})"));
+  EXPECT_NE(e.find("1 or 2 lobes"), std::string::npos) << e;
+  e = errorOf(scene("l4.json", R"({"name": "m", "brdf": "lafortune", "lobes": [{"c": [-1, -1, 1], "n": -3}]})"));
+  EXPECT_NE(e.find("materials[0].lobes[0].n: expected a number in [0"), std::string::npos) << e;
+  e = errorOf(scene("l5.json", R"({"name": "m", "brdf": "lafortune", "lobes": [{"c": [-1, -1, 1], "exponent": 3}]})"));
+  EXPECT_NE(e.find("lobes[0].exponent: unknown key"), std::string::npos) << e;
+  const std::string ok = scene("l6.json", R"({"name": "m", "brdf": "lafortune", "lobes": [{"c": [-1, -1, 1], "n": 30, "rho": 5}, {"c": [0.5, 0.5, 0.8], "n": 2}]})");
+  const shadetwin::Scene s = shadetwin::loadScene(ok);
+  ASSERT_EQ(s.materials[0].lobes.size(), 2u);
+  EXPECT_EQ(s.materials[0].lobes[0].n, 30.0f);
+  EXPECT_EQ(s.materials[0].lobes[1].c[2], 0.8f);
+  EXPECT_EQ(s.materials[0].lobes[1].rho, 1.0f);  // default
+
+  e = errorOf(scene("m1.json", R"({"name": "m", "diffuse_map": "../assets/textures/nothere.exr"})"));
+  EXPECT_NE(e.find("materials[0].diffuse_map: file not found"), std::string::npos) << e;
+  EXPECT_NE(e.find("scripts/setup.sh"), std::string::npos) << e;
+  e = errorOf(scene("m2.json", R"({"name": "m", "brdf": "phong", "roughness_map": "../assets/textures/roughness_ramp.exr"})"));
+  EXPECT_NE(e.find("a roughness map needs brdf ward or ggx"), std::string::npos) << e;
+  const shadetwin::Scene t = shadetwin::loadScene(src("scenes/textured.json"));
+  EXPECT_TRUE(std::filesystem::exists(t.materials[0].diffuseMap)) << t.materials[0].diffuseMap;
+  EXPECT_TRUE(t.materials[2].hasMaps());
+}
+
 TEST(Mesh, BadNpmModuleAndIndices) {
   std::string p = writeTemp("bad.js", "exports.positions=[[0,0,0],[1,0,0],[0,1,0]];exports.cells=[[0,1,7]]");
   try {

@@ -17,6 +17,7 @@
 
 #include "image_io.h"
 #include "reference/reference_brdf.h"
+#include "render/material.h"
 #include "render/gbuffer.h"
 #include "render/render.h"
 #include "util/progress.h"
@@ -151,6 +152,16 @@ RefBrdf refBrdf(const Material& m) {
   else if (m.brdf == "ggx") b.lobe = reference::Lobe::Ggx;
   else if (m.brdf == "ward") b.lobe = reference::Lobe::Ward;
   else if (m.brdf == "mirror") b.lobe = reference::Lobe::Mirror;
+  else if (m.brdf == "lafortune") {
+    b.lobe = reference::Lobe::Lafortune;
+    if (m.lobes.empty() || m.lobes.size() > 2)
+      throw std::invalid_argument("reference: material '" + m.name + "': a lafortune BRDF needs 1 or 2 lobes");
+    for (size_t k = 0; k < m.lobes.size(); ++k) {
+      for (int i = 0; i < 3; ++i) b.lobes[k].c[i] = m.lobes[k].c[size_t(i)];
+      b.lobes[k].n = m.lobes[k].n;
+      b.lobes[k].rho = m.lobes[k].rho;
+    }
+  }
   else throw std::invalid_argument("reference: material '" + m.name + "': BRDF '" + m.brdf + "' has no reference implementation yet");
   return b;
 }
@@ -162,6 +173,7 @@ struct World {
   struct Geo {
     std::vector<D3> n, t;
     std::vector<double> handed;
+    std::vector<std::array<double, 2>> uv;
     const std::vector<uint32_t>* idx = nullptr;
     uint32_t material = 0;
   };
@@ -194,6 +206,7 @@ struct World {
         geo.n.push_back(xf(nm, nn[0], nn[1], nn[2]));
         geo.t.push_back(xf(o.model, tt[0], tt[1], tt[2]));
         geo.handed.push_back(tt[3]);
+        geo.uv.push_back({m.uvs[i][0], m.uvs[i][1]});
       }
       std::copy(m.indices.begin(), m.indices.end(), ib);
       rtcCommitGeometry(g);
@@ -223,9 +236,58 @@ struct World {
 
 }  // namespace
 
+// Material maps for the reference: level 0 of each map, bilinear with repeat addressing at the hit's
+// uv (the reference shoots one ray through each pixel centre, so it point-samples the texture's
+// reconstruction; the rasterized techniques filter over the pixel's footprint).
+struct RefMaps {
+  MaterialMapImages images;
+  std::vector<std::string> files;
+  explicit RefMaps(const Scene& s) : files(materialMapFiles(s)) {
+    if (!files.empty()) images = loadMaterialMaps(s);
+  }
+  int layer(const std::string& f) const {
+    for (size_t i = 0; i < files.size(); ++i)
+      if (files[i] == f) return int(i);
+    return -1;
+  }
+  void lookup(int layer, double u, double v, double out[3]) const {
+    const int64_t w = images.width, h = images.height;
+    const double x = u * double(w) - 0.5, y = v * double(h) - 0.5;
+    const double fx = std::floor(x), fy = std::floor(y), ax = x - fx, ay = y - fy;
+    auto texel = [&](int64_t i, int64_t j, int c) {
+      i = ((i % w) + w) % w, j = ((j % h) + h) % h;
+      return double(images.texels[((size_t(layer) * size_t(h) + size_t(j)) * size_t(w) + size_t(i)) * 4 + size_t(c)]);
+    };
+    const int64_t i0 = int64_t(fx), j0 = int64_t(fy);
+    for (int c = 0; c < 3; ++c)
+      out[c] = (1 - ay) * ((1 - ax) * texel(i0, j0, c) + ax * texel(i0 + 1, j0, c)) +
+               ay * ((1 - ax) * texel(i0, j0 + 1, c) + ax * texel(i0 + 1, j0 + 1, c));
+  }
+  /// The material at uv: kd, ks times their maps; roughness (ward, ggx) times the map's red channel.
+  RefBrdf apply(const RefBrdf& b, const Material& m, double u, double v) const {
+    RefBrdf r = b;
+    double t[3];
+    if (!m.diffuseMap.empty()) {
+      lookup(layer(m.diffuseMap), u, v, t);
+      for (int k = 0; k < 3; ++k) r.kd[k] *= t[k];
+    }
+    if (!m.specularMap.empty()) {
+      lookup(layer(m.specularMap), u, v, t);
+      for (int k = 0; k < 3; ++k) r.ks[k] *= t[k];
+    }
+    if (!m.roughnessMap.empty()) {
+      lookup(layer(m.roughnessMap), u, v, t);
+      r.ax = std::max(r.ax * t[0], 1e-4);
+      r.ay = std::max(r.ay * t[0], 1e-4);
+    }
+    return r;
+  }
+};
+
 std::vector<float> renderReference(const Scene& scene, const EnvImage& envImg, const ReferenceOptions& opts) {
   std::vector<RefBrdf> brdfs;
   for (const Material& m : scene.materials) brdfs.push_back(refBrdf(m));
+  const RefMaps maps(scene);
   const Environment env(envImg, scene.environmentIntensity);
   const World world(scene);
   const CameraRays cam = cameraRays(scene);
@@ -258,9 +320,14 @@ std::vector<float> renderReference(const Scene& scene, const EnvImage& envImg, c
         continue;
       }
       const World::Geo& g = world.geos[rh.hit.geomID];
-      const RefBrdf& brdf = brdfs[std::min<size_t>(g.material, brdfs.size() - 1)];
+      const size_t slot = std::min<size_t>(g.material, brdfs.size() - 1);
       const uint32_t* tri = &(*g.idx)[3 * size_t(rh.hit.primID)];
       const double b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1 - b1 - b2;
+      const Material& mat = scene.materials[slot];
+      const RefBrdf brdf = mat.hasMaps() ? maps.apply(brdfs[slot], mat,
+                                                      g.uv[tri[0]][0] * b0 + g.uv[tri[1]][0] * b1 + g.uv[tri[2]][0] * b2,
+                                                      g.uv[tri[0]][1] * b0 + g.uv[tri[1]][1] * b1 + g.uv[tri[2]][1] * b2)
+                                         : brdfs[slot];
       D3 n = reference::normalize(g.n[tri[0]] * b0 + g.n[tri[1]] * b1 + g.n[tri[2]] * b2);
       D3 ng = reference::normalize(D3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
       const D3 wo = d * -1.0;

@@ -17,6 +17,10 @@
 //                   (4 pi ax ay sqrt(cos_i cos_o))                                          (Ward 1992, as in
 //              Walter 2005 "Notes on the Ward BRDF"); h sampled with
 //              pdf_h = exp(-tan^2(theta_h)(...)) / (pi ax ay cos^3(theta_h)), pdf = pdf_h / (4 wo.h).
+//   lafortune  fs = sum_k rho_k max(s_k . wi, 0)^n_k, s_k = (Cx wo.x, Cy wo.y, Cz wo.z)       (Lafortune et al. 1997,
+//              one or two lobes); lobe k is a Phong lobe of exponent n_k about a_k = s_k / |s_k| with
+//              integral m_k = rho_k |s_k|^n_k 2 pi / (n_k + 1); picked with P_k = m_k / sum m, then sampled as
+//              Phong about a_k: pdf = sum_k P_k (n_k + 1) / (2 pi) max(a_k . wi, 0)^n_k.
 //   mirror     fs = delta(wi - reflect(wo)): handled by the renderer, not sampled here.
 // Sampling picks the diffuse lobe (cosine-weighted) with probability lum(kd) / (lum(kd) + lum(ks)),
 // else the glossy lobe; pdf() is that mixture.
@@ -38,12 +42,29 @@ inline double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline D3 normalize(D3 a) { return a * (1.0 / std::sqrt(dot(a, a))); }
 
-enum class Lobe { Phong, Blinn, Ggx, Ward, Mirror };
+enum class Lobe { Phong, Blinn, Ggx, Ward, Lafortune, Mirror };
+
+struct RefLafortuneLobe {
+  double c[3] = {-1, -1, 1};
+  double n = 1, rho = 0;  // rho = 0: absent
+};
 
 struct RefBrdf {
   Lobe lobe = Lobe::Phong;
   double kd[3] = {0.5, 0.5, 0.5}, ks[3] = {0.04, 0.04, 0.04};
   double exponent = 100, ax = 0.2, ay = 0.2;
+  RefLafortuneLobe lobes[2];
+
+  /// Lafortune: s_k, its length and the lobe's share P_k of the sampling (P_1 = 1 - P_0).
+  D3 lafortuneS(int k, D3 wo) const { return {lobes[k].c[0] * wo.x, lobes[k].c[1] * wo.y, lobes[k].c[2] * wo.z}; }
+  double lafortuneP0(D3 wo) const {
+    double m[2];
+    for (int k = 0; k < 2; ++k) {
+      const double l = std::sqrt(dot(lafortuneS(k, wo), lafortuneS(k, wo)));
+      m[k] = l > 0 ? lobes[k].rho * std::pow(l, lobes[k].n) / (lobes[k].n + 1) : 0.0;
+    }
+    return m[0] + m[1] > 0 ? m[0] / (m[0] + m[1]) : 1.0;
+  }
 
   double diffuseWeight() const {
     const double d = 0.2126 * kd[0] + 0.7152 * kd[1] + 0.0722 * kd[2];
@@ -74,6 +95,11 @@ struct RefBrdf {
         const D3 h = normalize(wi + wo);
         return std::exp(-wardExponent(h)) / (4 * pi * ax * ay * std::sqrt(wi.z * wo.z));
       }
+      case Lobe::Lafortune: {
+        double f = 0;
+        for (int k = 0; k < 2; ++k) f += lobes[k].rho * std::pow(std::max(0.0, dot(lafortuneS(k, wo), wi)), lobes[k].n);
+        return f;
+      }
       case Lobe::Mirror: return 0;
     }
     return 0;
@@ -100,6 +126,17 @@ struct RefBrdf {
       case Lobe::Ward: {
         const D3 h = normalize(wi + wo);
         return std::exp(-wardExponent(h)) / (pi * ax * ay * h.z * h.z * h.z) / (4 * dot(wo, h));
+      }
+      case Lobe::Lafortune: {
+        const double p0 = lafortuneP0(wo);
+        double p = 0;
+        for (int k = 0; k < 2; ++k) {
+          const D3 s = lafortuneS(k, wo);
+          if (dot(s, s) <= 0) continue;
+          const double c = std::max(0.0, dot(normalize(s), wi));
+          p += (k == 0 ? p0 : 1 - p0) * (lobes[k].n + 1) / (2 * pi) * std::pow(c, lobes[k].n);
+        }
+        return p;
       }
       case Lobe::Mirror: return 0;
     }
@@ -147,6 +184,17 @@ struct RefBrdf {
         const double t2 = -std::log(std::max(1e-300, u1)) / (cp * cp / (ax * ax) + sp * sp / (ay * ay));
         const double c = 1 / std::sqrt(1 + t2), s = std::sqrt(std::max(0.0, 1 - c * c));
         return reflect(wo, {s * cp, s * sp, c});
+      }
+      case Lobe::Lafortune: {
+        const double p0 = lafortuneP0(wo);
+        const int k = u1 < p0 ? 0 : 1;
+        const double uu = k == 0 ? u1 / p0 : (u1 - p0) / (1 - p0);
+        const double e = lobes[k].n;
+        const double c = std::pow(uu, 1 / (e + 1)), s = std::sqrt(std::max(0.0, 1 - c * c)), phi = 2 * pi * u2;
+        const D3 a = normalize(lafortuneS(k, wo));
+        D3 t, b;
+        frame(a, t, b);
+        return t * (s * std::cos(phi)) + b * (s * std::sin(phi)) + a * c;
       }
       case Lobe::Mirror: break;
     }

@@ -67,14 +67,6 @@ std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInp
 void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
               std::vector<float>& out);
 
-/// BRDF parameters of a material for the shared samplers (shade/brdf.h); throws for BRDFs the
-/// technique cannot sample (mirror; lafortune until scenes carry its lobes), naming the material.
-struct BrdfGpu {
-  uint32_t kind;
-  float e, ax, ay;
-};
-BrdfGpu brdfOf(const Material& m);
-
 /// Emulated sampler of an environment texture: trilinear, clamp in v, repeat (equirectangular map) or
 /// clamp (paraboloid atlas) in u; the emulator's side of environmentSamplerInfo (render/passes_vk.h).
 shade::Sampler2D environmentSampler(const emu::Texture& tex, const emu::DeviceProfile& dev, bool repeatU);

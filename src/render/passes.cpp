@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "emu/fpenv.h"
+#include "render/material.h"
 #include "shade/instantiate.h"
 #include "util/timer.h"
 
@@ -123,15 +124,6 @@ std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInp
   return out;
 }
 
-BrdfGpu brdfOf(const Material& m) {
-  if (m.brdf == "phong") return {shade::scalar::kBrdfPhong, m.exponent, 0, 0};
-  if (m.brdf == "blinn") return {shade::scalar::kBrdfBlinn, m.exponent, 0, 0};
-  if (m.brdf == "ward") return {shade::scalar::kBrdfWard, 0, m.roughness, m.roughnessY};
-  if (m.brdf == "ggx") return {shade::scalar::kBrdfGgx, 0, m.roughness, m.roughness};
-  throw std::invalid_argument("material '" + m.name + "': BRDF '" + m.brdf +
-                              "' cannot be importance-sampled by fis (phong, blinn, ward or ggx)");
-}
-
 shade::Sampler2D environmentSampler(const emu::Texture& tex, const emu::DeviceProfile& dev, bool repeatU) {
   shade::Sampler2D s;
   s.tex = &tex;
@@ -160,7 +152,7 @@ using V4x = shade::V4<F8>;
 // One device vector of a shading pass: 8 consecutive pixels of the G-buffer (tail lanes repeat the
 // last pixel, as the GPU's tail invocations do), their material slots and camera rays.
 struct PixelBlock {
-  V4x g0, g1, g2;
+  V4x g0, g1, g2, g3;
   V3x eye, ray;
   emu::U32<8> pixel;  // row-major pixel index (tail lanes: the last pixel)
   uint32_t slot[8];
@@ -188,6 +180,7 @@ void shadePixelBlocks(const Scene& scene, const GBuffer& g, const emu::DevicePro
         p.g0.x.set(l, t[0]), p.g0.y.set(l, t[1]), p.g0.z.set(l, t[2]), p.g0.w.set(l, t[3]);
         p.g1.x.set(l, t[4]), p.g1.y.set(l, t[5]), p.g1.z.set(l, t[6]), p.g1.w.set(l, t[7]);
         p.g2.x.set(l, t[8]), p.g2.y.set(l, t[9]), p.g2.z.set(l, t[10]), p.g2.w.set(l, t[11]);
+        p.g3.x.set(l, t[12]), p.g3.y.set(l, t[13]), p.g3.z.set(l, t[14]), p.g3.w.set(l, t[15]);
         p.slot[l] = shade::scalar::materialSlot(t[3], materialCount);
         p.pixel.set(l, uint32_t(i));
         px.set(l, float(i % g.width));
@@ -204,35 +197,36 @@ void shadePixelBlocks(const Scene& scene, const GBuffer& g, const emu::DevicePro
   });
 }
 
-// What the shading kernels read of a material slot (render/shade_vk.cpp MaterialGpu); a scene without
-// materials has one default slot. The BRDF only for the sampling techniques (brdfOf throws for mirror).
-struct SlotData {
-  Vec3 diffuse, specular;
-  BrdfGpu brdf;
-};
-std::vector<SlotData> materialTable(const Scene& scene, bool withBrdf) {
-  const std::vector<Material> mats = scene.materials.empty() ? std::vector<Material>{Material{}} : scene.materials;
-  std::vector<SlotData> t;
-  for (const Material& m : mats) t.push_back({m.diffuse, m.specular, withBrdf ? brdfOf(m) : BrdfGpu{}});
-  return t;
-}
-
-// Each lane's material: kd, ks and BRDF parameters (Lafortune lobes unused: brdfOf rejects it).
+// Each lane's material record (render/material.h), gathered into lanes; surface() is the shared
+// shade/material.h step (BRDF parameters unpacked, maps applied), as the GLSL entry points do it.
 struct LaneMaterials {
   V3x diffuse, specular;
   shade::x8::BrdfParams brdf;
+  emu::U32<8> maps[3];
 };
-LaneMaterials laneMaterials(const PixelBlock& p, const std::vector<SlotData>& table) {
-  V3x kd, ks;
-  emu::U32<8> kind(0u);
-  F8 e, ax, ay;
+LaneMaterials laneMaterials(const PixelBlock& p, const std::vector<MaterialGpu>& table) {
+  V4x v[6];  // diffuse, specular, brdf, lobe0, lobe1, rho
+  emu::U32<8> kind(0u), maps[3];
   for (int l = 0; l < 8; ++l) {
-    const SlotData& m = table[p.slot[l]];
-    kd.x.set(l, m.diffuse[0]), kd.y.set(l, m.diffuse[1]), kd.z.set(l, m.diffuse[2]);
-    ks.x.set(l, m.specular[0]), ks.y.set(l, m.specular[1]), ks.z.set(l, m.specular[2]);
-    kind.set(l, m.brdf.kind), e.set(l, m.brdf.e), ax.set(l, m.brdf.ax), ay.set(l, m.brdf.ay);
+    const MaterialGpu& m = table[p.slot[l]];
+    const float* src[6] = {m.diffuse, m.specular, m.brdf, m.lobe0, m.lobe1, m.rho};
+    for (int k = 0; k < 6; ++k) v[k].x.set(l, src[k][0]), v[k].y.set(l, src[k][1]), v[k].z.set(l, src[k][2]), v[k].w.set(l, src[k][3]);
+    kind.set(l, m.kind[0]);
+    for (int k = 0; k < 3; ++k) maps[k].set(l, m.maps[k]);
   }
-  return {kd, ks, shade::x8::brdfParams(kind, e, ax, ay)};
+  return {V3x(v[0].x, v[0].y, v[0].z), V3x(v[1].x, v[1].y, v[1].z),
+          shade::x8::brdfParamsPacked(kind, v[2], v[3], v[4], v[5]), {maps[0], maps[1], maps[2]}};
+}
+shade::x8::SurfaceMaterial surface(const PixelBlock& p, const std::vector<MaterialGpu>& table, const shade::Sampler2D& maps) {
+  const LaneMaterials m = laneMaterials(p, table);
+  return shade::x8::surfaceMaterial(maps, m.diffuse, m.specular, m.brdf, m.maps[0], m.maps[1], m.maps[2], p.g1, p.g2, p.g3);
+}
+
+// Material maps: trilinear, repeat in u and v (the Vulkan side: materialMapSamplerInfo).
+shade::Sampler2D mapSampler(const emu::Texture& tex, const emu::DeviceProfile& dev) {
+  shade::Sampler2D s = environmentSampler(tex, dev, true);
+  s.desc.addressV = emu::AddressMode::Repeat;
+  return s;
 }
 
 // Technique env: the light loop of shade_env.comp (light 0 first, one envAddLight each).
@@ -240,10 +234,11 @@ void shadeEnvEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
                  std::vector<float>& out) {
   const shade::Sampler2D s = environmentSampler(*in.environment, dev, true);
   const F8 intensity(scene.environmentIntensity);
-  const std::vector<SlotData> mats = materialTable(scene, true);
+  const shade::Sampler2D maps = mapSampler(*in.maps, dev);
+  const std::vector<MaterialGpu> mats = materialRecords(scene, true);
   const std::vector<float>& L = in.lights.data;
   shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
-    const LaneMaterials m = laneMaterials(p, mats);
+    const auto m = surface(p, mats, maps);
     V3x sum(F8(0.0f), F8(0.0f), F8(0.0f));
     const emu::Mask<8> geometry = p.g0.w != F8(0.0f);
     if (anyLane(geometry)) {  // IF_ANY, as shade_env.comp's per-invocation if
@@ -265,9 +260,10 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
   for (int k = 0; k < 9; ++k) c[k] = splat(&in.sh.c[3 * size_t(k)]);
   const shade::x8::ShRgb sh{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8]};
   const uint32_t mode = fisMode(scene);
-  const std::vector<SlotData> mats = materialTable(scene, true);
+  const shade::Sampler2D maps = mapSampler(*in.maps, dev);
+  const std::vector<MaterialGpu> mats = materialRecords(scene, true);
   shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
-    const LaneMaterials m = laneMaterials(p, mats);
+    const auto m = surface(p, mats, maps);
     return shade::x8::shadeFis(s, mode, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.pixel, p.g0, p.g1, p.g2,
                                p.eye, p.ray, m.diffuse, m.specular, m.brdf);
   });
@@ -281,7 +277,7 @@ void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const
   const emu::Texture& env = *in.environment;
   const shade::Sampler2D envS = environmentSampler(env, dev, true);
   const F8 maxLod(float(env.levelCount() - 1)), intensity(scene.environmentIntensity);
-  const std::vector<SlotData> mats = materialTable(scene, false);
+  const std::vector<MaterialGpu> mats = materialRecords(scene, false);
   shadePixelBlocks(scene, g, dev, 64, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
     const LaneMaterials m = laneMaterials(p, mats);
     return shade::x8::shadeMirror(envS, maxLod, intensity, p.g0, p.g1, p.eye, p.ray, m.diffuse, m.specular);

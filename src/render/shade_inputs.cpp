@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "render/material.h"
 #include "render/paraboloid.h"
 #include "util/timer.h"
 
@@ -14,6 +15,7 @@ ShadeInputs shadeInputsEmu(const Scene& scene, const emu::Texture& env, const em
     in.shMs = timeMs([&] { in.sh = shIrradianceEmu(env, dev); });
   }
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
+  if (scene.technique != "mirror") in.maps = std::make_shared<emu::Texture>(materialMapsEmu(loadMaterialMaps(scene)));
   return in;
 }
 
@@ -25,6 +27,7 @@ ShadeInputs shadeInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::T
     in.shMs = timeMs([&] { in.sh = shIrradianceVulkan(ctx, env); });
   }
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
+  if (scene.technique != "mirror") in.maps = std::make_shared<emu::Texture>(materialMapsVulkan(ctx, loadMaterialMaps(scene)));
   return in;
 }
 

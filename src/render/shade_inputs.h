@@ -20,6 +20,7 @@ struct ShadeInputs {
   std::shared_ptr<const emu::Texture> atlas;  // fis: dual-paraboloid atlas with its MIP chain
   ShIrradiance sh;                            // fis: E/pi coefficients
   EnvLights lights;                           // env: directional lights (host-sampled, the same for both builds)
+  std::shared_ptr<const emu::Texture> maps;   // fis, env: material maps (render/material.h), a 1x1 white layer if none
   double atlasMs = 0, shMs = 0;               // build times (0 when not built)
   /// The texture the shading kernel samples: the atlas for fis, else the environment.
   const emu::Texture& texture() const { return atlas ? *atlas : *environment; }

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "emu/format.h"
+#include "render/material.h"
 #include "render/passes_vk.h"
 
 namespace shadetwin {
@@ -25,16 +26,11 @@ struct ShadePush {
 };
 static_assert(offsetof(ShadePush, levelConstant) == 96, "the first 96 bytes are shade_mirror.comp's push block");
 static_assert(sizeof(ShadePush) == 112, "ShadePush must match the push block of shade_fis.comp");
-// Materials: shade_mirror.comp reads {diffuse, specular} (32-byte stride), shade_fis.comp all 64 bytes.
-struct MaterialGpu {
-  float diffuse[4], specular[4], brdf[4];
-  uint32_t kind[4];
-};
-static_assert(sizeof(MaterialGpu) == 64 && offsetof(MaterialGpu, brdf) == 32, "MaterialGpu must match shade_*.comp");
-
-// What each kernel binds: mirror reads 96 push bytes, 4 bindings, {diffuse, specular} materials and the
-// equirectangular map; fis all 112 bytes and binding 4 = SH coefficients, the atlas (clamped in u);
-// env 96 bytes (sampleCount = light count) and binding 4 = lights, the equirectangular map.
+// What each kernel binds: mirror reads 96 push bytes, 4 bindings, {diffuse, specular} of the material
+// records (render/material.h, 32-byte stride) and the equirectangular map; fis all 112 bytes, binding
+// 4 = SH coefficients and 5 = material maps, the atlas (clamped in u); env 96 bytes (sampleCount =
+// light count), binding 4 = lights and 5 = material maps, the equirectangular map. fis and env read
+// whole 128-byte material records and G0..G3 (64 bytes per pixel), mirror G0, G1.
 struct KernelInfo {
   std::span<const uint32_t> spirv;
   uint32_t bindings;
@@ -42,9 +38,20 @@ struct KernelInfo {
   bool brdf, repeatU;
 };
 KernelInfo kernelInfo(const std::string& technique) {
-  if (usesFisPass(technique)) return {kSpv_shade_fis_comp, 5, sizeof(ShadePush), true, false};
-  if (technique == "env") return {kSpv_shade_env_comp, 5, offsetof(ShadePush, levelConstant), true, true};
+  if (usesFisPass(technique)) return {kSpv_shade_fis_comp, 6, sizeof(ShadePush), true, false};
+  if (technique == "env") return {kSpv_shade_env_comp, 6, offsetof(ShadePush, levelConstant), true, true};
   return {kSpv_shade_mirror_comp, 4, offsetof(ShadePush, levelConstant), false, true};
+}
+
+VkSamplerCreateInfo materialMapSamplerInfo() {
+  VkSamplerCreateInfo si = environmentSamplerInfo(true);
+  si.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  return si;
+}
+
+const emu::Texture& whiteTexture() {
+  static const emu::Texture t = materialMapsEmu(MaterialMapImages{});
+  return t;
 }
 }  // namespace
 
@@ -57,22 +64,29 @@ struct ShadePassVk::Impl {
   vk::Kernel kernel;
   float envMaxLod;
   vk::Buffer extra;  // binding 4: fis, 9 vec4 of E/pi coefficients; env, the lights
+  vk::Image maps;    // binding 5 (fis, env): material maps
+  vk::Sampler mapSampler;
   std::unique_ptr<vk::Buffer> gbuf, out;
-  static constexpr VkDescriptorType kLayout[5] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+  static constexpr VkDescriptorType kLayout[6] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
   KernelInfo info;
   bool fis;
   uint32_t lightCount;
   size_t materialStride() const { return info.brdf ? sizeof(MaterialGpu) : offsetof(MaterialGpu, brdf); }
-  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in) : Impl(c, s, in, in.texture(), kernelInfo(s.technique)) {}
-  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in, const emu::Texture& tex, const KernelInfo& ki)
+  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in)
+      : Impl(c, s, in, in.texture(), in.maps ? *in.maps : whiteTexture(), kernelInfo(s.technique)) {}
+  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in, const emu::Texture& tex, const emu::Texture& mapTex,
+       const KernelInfo& ki)
       : ctx(c), scene(s),
         env(c, VK_FORMAT_R32G32B32A32_SFLOAT, tex.width(), tex.height(), 1, tex.levels(), 16, VK_IMAGE_VIEW_TYPE_2D),
         sampler(c, environmentSamplerInfo(ki.repeatU)),
         materials(c, std::max<size_t>(1, s.materials.size()) * sizeof(MaterialGpu)),
         kernel(c, vk::Stage::Compute, ki.spirv, std::span<const VkDescriptorType>(kLayout, ki.bindings), uint32_t(ki.pushBytes)),
-        envMaxLod(float(tex.levelCount() - 1)), extra(c, std::max<size_t>(9 * 16, in.lights.data.size() * 4)), info(ki),
+        envMaxLod(float(tex.levelCount() - 1)), extra(c, std::max<size_t>(9 * 16, in.lights.data.size() * 4)),
+        maps(c, VK_FORMAT_R32G32B32A32_SFLOAT, mapTex.width(), mapTex.height(), mapTex.layers(), mapTex.levels(), 16,
+             VK_IMAGE_VIEW_TYPE_2D_ARRAY),
+        mapSampler(c, materialMapSamplerInfo()), info(ki),
         fis(usesFisPass(s.technique)), lightCount(in.lights.count) {
     if (fis)
       for (int k = 0; k < 9; ++k) {
@@ -82,19 +96,11 @@ struct ShadePassVk::Impl {
       }
     else if (!in.lights.data.empty())
       std::memcpy(extra.data(), in.lights.data.data(), in.lights.data.size() * 4);
-    if (tex.format() != emu::Format::RGBA32F) throw vk::Error("shading pass: the environment must be RGBA32F");
-    std::vector<Material> mats = s.materials;
-    if (mats.empty()) mats.push_back(Material{});
-    for (size_t i = 0; i < mats.size(); ++i) {
-      MaterialGpu m{};
-      std::memcpy(m.diffuse, mats[i].diffuse.data(), 12);
-      std::memcpy(m.specular, mats[i].specular.data(), 12);
-      if (info.brdf) {
-        const BrdfGpu b = brdfOf(mats[i]);
-        m.brdf[0] = b.e, m.brdf[1] = b.ax, m.brdf[2] = b.ay, m.kind[0] = b.kind;
-      }
-      std::memcpy(materials.as<uint8_t>() + i * materialStride(), &m, materialStride());
-    }
+    if (tex.format() != emu::Format::RGBA32F || mapTex.format() != emu::Format::RGBA32F)
+      throw vk::Error("shading pass: the environment and the material maps must be RGBA32F");
+    const std::vector<MaterialGpu> mats = materialRecords(s, info.brdf);
+    for (size_t i = 0; i < mats.size(); ++i)
+      std::memcpy(materials.as<uint8_t>() + i * materialStride(), &mats[i], materialStride());
   }
 };
 
@@ -105,7 +111,7 @@ ShadePassVk::~ShadePassVk() = default;
 std::vector<float> ShadePassVk::run(const GBuffer& g) {
   Impl& m = *impl_;
   const size_t n = size_t(g.width) * g.height;
-  const size_t stride = m.info.brdf ? 48 : 32;  // G0, G1 (+ G2, the tangent, for fis and env)
+  const size_t stride = m.info.brdf ? 64 : 32;  // G0, G1 (+ G2, G3: tangent, uv derivatives, for fis and env)
   if (!m.gbuf || m.gbuf->size() < n * stride) {
     m.gbuf = std::make_unique<vk::Buffer>(m.ctx, n * stride);
     m.out = std::make_unique<vk::Buffer>(m.ctx, n * 16);
@@ -113,11 +119,12 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
   float* dst = m.gbuf->as<float>();
   for (size_t p = 0; p < n; ++p) std::memcpy(dst + stride / 4 * p, g.texels.data() + p * kGbufFloats, stride);
   const CameraRays cam = cameraRays(m.scene);
-  const vk::Binding b[5] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
+  const vk::Binding b[6] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.gbuf->handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.materials.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.out->handle()},
-                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.extra.handle()}};
+                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.extra.handle()},
+                            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.maps.view(), m.mapSampler.handle()}};
   ShadePush push{};
   std::memcpy(push.eye, cam.eye, 12);
   std::memcpy(push.fwd, cam.fwd, 12);

@@ -234,7 +234,8 @@ Scene loadScene(const std::string& path) {
     for (size_t i = 0; i < j["materials"].size(); ++i) {
       const json& m = j["materials"][i];
       const std::string key = "materials[" + std::to_string(i) + "]";
-      R.keys(m, key, {"name", "diffuse", "specular", "brdf", "exponent", "roughness", "roughness_y"});
+      R.keys(m, key, {"name", "diffuse", "specular", "brdf", "exponent", "roughness", "roughness_y", "lobes", "diffuse_map",
+                      "specular_map", "roughness_map"});
       Material mat;
       mat.name = R.string(m, key + ".name", "", true);
       if (matIndex.count(mat.name)) R.fail(key + ".name", "duplicate material name '" + mat.name + "'");
@@ -246,6 +247,39 @@ Scene loadScene(const std::string& path) {
       mat.exponent = R.number(m, key + ".exponent", mat.exponent, 0, 1e7f);
       mat.roughness = R.number(m, key + ".roughness", mat.roughness, 0, 1);
       mat.roughnessY = R.number(m, key + ".roughness_y", mat.roughness, 0, 1);
+      if (m.contains("lobes")) {
+        if (mat.brdf != "lafortune") R.fail(key + ".lobes", "only a lafortune material has lobes (brdf is '" + mat.brdf + "')");
+        const json& lobes = m["lobes"];
+        if (!lobes.is_array() || lobes.empty() || lobes.size() > 2) R.fail(key + ".lobes", "expected an array of 1 or 2 lobes {c, n, rho}");
+        for (size_t l = 0; l < lobes.size(); ++l) {
+          const std::string lk = key + ".lobes[" + std::to_string(l) + "]";
+          R.keys(lobes[l], lk, {"c", "n", "rho"});
+          LafortuneLobe lobe;
+          lobe.c = R.vec3(lobes[l], lk + ".c", lobe.c);
+          for (float c : lobe.c)
+            if (std::fabs(c) > 100) R.fail(lk + ".c", "expected coefficients in [-100, 100]");
+          lobe.n = R.number(lobes[l], lk + ".n", lobe.n, 0, 1e6f);
+          lobe.rho = R.number(lobes[l], lk + ".rho", lobe.rho, 0, 1e6f);
+          mat.lobes.push_back(lobe);
+        }
+      } else if (mat.brdf == "lafortune") {
+        R.fail(key + ".lobes", "missing: a lafortune material needs 1 or 2 lobes, e.g. [{\"c\": [-1, -1, 1], \"n\": 60, \"rho\": 9.7}]");
+      }
+      auto map = [&](const char* name) {
+        const std::string k = key + "." + name;
+        std::string file = R.string(m, k, "");
+        if (file.empty()) return file;
+        fs::path p = fs::path(file).is_absolute() ? fs::path(file) : dir / file;
+        if (!fs::exists(p))
+          R.fail(k, "file not found: " + p.lexically_normal().string() +
+                        (file.find("assets/") != std::string::npos ? " (fetch the assets with: bash scripts/setup.sh)" : ""));
+        return p.lexically_normal().string();
+      };
+      mat.diffuseMap = map("diffuse_map");
+      mat.specularMap = map("specular_map");
+      mat.roughnessMap = map("roughness_map");
+      if (!mat.roughnessMap.empty() && mat.brdf != "ward" && mat.brdf != "ggx")
+        R.fail(key + ".roughness_map", "a roughness map needs brdf ward or ggx (brdf is '" + mat.brdf + "')");
       matIndex[mat.name] = uint32_t(s.materials.size());
       s.materials.push_back(mat);
     }

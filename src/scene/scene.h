@@ -18,6 +18,15 @@ struct SceneError : std::runtime_error {
 using Mat4 = std::array<float, 16>;  // column-major, as GLSL mat4
 using Vec3 = std::array<float, 3>;
 
+/// One generalized cosine lobe of the Lafortune et al. (1997) model: rho max(s . wi, 0)^n with
+/// s = (Cx wo.x, Cy wo.y, Cz wo.z) in the shading frame (Cx = Cy = -1, Cz = 1: a Phong lobe about the
+/// mirror direction; rho carries the normalization, e.g. (n + 2) / (2 pi) for a normalized Phong lobe).
+struct LafortuneLobe {
+  Vec3 c{-1.0f, -1.0f, 1.0f};
+  float n = 10.0f;
+  float rho = 1.0f;
+};
+
 struct Material {
   std::string name;
   Vec3 diffuse{0.5f, 0.5f, 0.5f};  // albedo of the Lambertian term
@@ -26,6 +35,13 @@ struct Material {
   float exponent = 100.0f;     // Phong / Blinn-Phong exponent
   float roughness = 0.2f;      // GGX alpha / Ward alpha (x and y)
   float roughnessY = 0.2f;
+  std::vector<LafortuneLobe> lobes;  // lafortune: one or two lobes
+  // Spatially varying parameters (resolved paths of images readable by OpenImageIO; empty: none).
+  // diffuse and specular maps multiply the constant colours (RGB); a roughness map multiplies the
+  // roughness (ward: both alphas; ggx) by its red channel. Maps are sampled with trilinear filtering
+  // and repeat addressing at the LOD of the pixel's uv footprint (shade/material.h).
+  std::string diffuseMap, specularMap, roughnessMap;
+  bool hasMaps() const { return !diffuseMap.empty() || !specularMap.empty() || !roughnessMap.empty(); }
 };
 
 struct Object {

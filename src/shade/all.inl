@@ -7,6 +7,7 @@
 #include "shade/verify_kernels.h"
 #include "shade/mip.h"
 #include "shade/gbuffer.h"
+#include "shade/material.h"
 #include "shade/shadow.h"
 #include "shade/shade_mirror.h"
 #include "shade/paraboloid.h"

@@ -31,6 +31,7 @@
 #define INLINE
 #define IF_ANY(m) if (m)
 #define Sampler2D sampler2D
+#define Sampler2DArray sampler2DArray
 
 // select(m, a, b): a where m is true, else b. GLSL mix() with a bool selector picks without arithmetic.
 float select(bool m, float a, float b) { return mix(b, a, m); }
@@ -42,6 +43,12 @@ uint select(bool m, uint a, uint b) { return mix(b, a, m); }
 bool select(bool m, bool a, bool b) { return mix(b, a, m); }
 // texelFetch of a 2D texture with separate coordinates (the C++ side has no ivec2).
 vec4 texelFetch2D(sampler2D s, int x, int y, int level) { return texelFetch(s, ivec2(x, y), level); }
+// textureLod of a 2D array texture with the layer apart, and the size of its level 0 as floats.
+vec4 textureLodLayer(sampler2DArray s, vec2 uv, float layer, float lod) { return textureLod(s, vec3(uv, layer), lod); }
+vec2 textureSizeOf(sampler2DArray s) {
+  ivec3 z = textureSize(s, 0);
+  return vec2(float(z.x), float(z.y));
+}
 #define dot st_dot
 #define cross st_cross
 
@@ -82,6 +89,11 @@ using Sampler2D = ::shadetwin::shade::Sampler2D;
 inline Float4 textureLod(const Sampler2D& s, Float2 uv, Float lod) {
   return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod);
 }
+using Sampler2DArray = ::shadetwin::shade::Sampler2D;  // the emulated texture has layers
+inline Float4 textureLodLayer(const Sampler2DArray& s, Float2 uv, Float layer, Float lod) {
+  return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod, layer);
+}
+inline Float2 textureSizeOf(const Sampler2DArray& s) { return Float2(Float(float(s.tex->width())), Float(float(s.tex->height()))); }
 inline Float4 texelFetch2D(const Sampler2D& s, Int x, Int y, int level) {
   return ::shadetwin::shade::texelFetchLanes(s, x, y, level);
 }

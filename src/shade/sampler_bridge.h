@@ -17,18 +17,19 @@ struct Sampler2D {
   const emu::DeviceProfile* dev = nullptr;
 };
 
-inline V4<float> textureLodLanes(const Sampler2D& s, float u, float v, float lod) {
-  emu::Texel4 t = emu::textureLod(*s.tex, s.desc, *s.dev, u, v, 0.0f, lod);
+inline V4<float> textureLodLanes(const Sampler2D& s, float u, float v, float lod, float layer = 0.0f) {
+  emu::Texel4 t = emu::textureLod(*s.tex, s.desc, *s.dev, u, v, layer, lod);
   return V4<float>(t.r, t.g, t.b, t.a);
 }
 
 template <int N>
-V4<emu::F32<N>> textureLodLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v, emu::F32<N> lod) {
+V4<emu::F32<N>> textureLodLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v, emu::F32<N> lod,
+                                emu::F32<N> layer = emu::F32<N>(0.0f)) {
   float q[4 * N], out[4 * N];
   for (int i = 0; i < N; ++i) {
     q[4 * i] = u[i];
     q[4 * i + 1] = v[i];
-    q[4 * i + 2] = 0.0f;
+    q[4 * i + 2] = layer[i];
     q[4 * i + 3] = lod[i];
   }
   emu::textureLodVector(*s.tex, s.desc, *s.dev, q, out, N);

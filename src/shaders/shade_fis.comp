@@ -7,10 +7,11 @@
 
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D atlas;
-struct GbufFis { vec4 g0; vec4 g1; vec4 g2; };  // render/shade_vk.cpp
+struct GbufFis { vec4 g0; vec4 g1; vec4 g2; vec4 g3; };  // render/shade_vk.cpp
 layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufFis gbuf[]; };
-struct FisMaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; };  // render/shade_vk.cpp
-layout(std430, set = 0, binding = 2) readonly buffer Materials { FisMaterialGpu materials[]; };
+struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lobe0; vec4 lobe1; vec4 rho; uvec4 maps; };  // render/material.h
+layout(std430, set = 0, binding = 2) readonly buffer Materials { MaterialGpu materials[]; };
+layout(set = 0, binding = 5) uniform sampler2DArray maps;  // render/material.h
 layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
 layout(std430, set = 0, binding = 4) readonly buffer Sh { vec4 sh[9]; };  // render/sh_irradiance.cpp
 layout(push_constant) uniform Push {
@@ -24,11 +25,12 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   uint p = min(i, pc.count - 1u);
   GbufFis g = gbuf[p];
-  FisMaterialGpu m = materials[materialSlot(g.g0.w, pc.materialCount)];
-  BrdfParams bp = brdfParams(m.kind.x, m.brdf.x, m.brdf.y, m.brdf.z);
+  MaterialGpu r = materials[materialSlot(g.g0.w, pc.materialCount)];
+  SurfaceMaterial m = surfaceMaterial(maps, r.diffuse.xyz, r.specular.xyz, brdfParamsPacked(r.kind.x, r.brdf, r.lobe0, r.lobe1, r.rho),
+                                      r.maps.x, r.maps.y, r.maps.z, g.g1, g.g2, g.g3);
   vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
   ShRgb e = ShRgb(sh[0].xyz, sh[1].xyz, sh[2].xyz, sh[3].xyz, sh[4].xyz, sh[5].xyz, sh[6].xyz, sh[7].xyz, sh[8].xyz);
   vec4 c = shadeFis(atlas, pc.mode, pc.maxLod, pc.levelConstant, pc.levelBias, pc.sampleCount, pc.intensity, e, p, g.g0, g.g1, g.g2,
-                    pc.eye.xyz, ray, m.diffuse.xyz, m.specular.xyz, bp);
+                    pc.eye.xyz, ray, m.diffuse, m.specular, m.brdf);
   if (i < pc.count) color[i] = c;
 }
