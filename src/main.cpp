@@ -60,6 +60,9 @@ int main(int argc, char** argv) {
   render->add_option("--width", ro.width, "override the scene's image width")->check(CLI::Range(1, 16384));
   render->add_option("--height", ro.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   render->add_option("--profile", ro.profile, "device profile the emulator follows (lavapipe, nvidia)");
+  render->add_option("--frames", ro.frames, "frames to render (OUT_0000.exr, ...); technique inputs are rebuilt only when the environment changes")
+      ->check(CLI::Range(1, 100000));
+  render->add_option("--env-rotate", ro.envRotate, "degrees the environment turns about +y per frame (whole texel columns)");
   shadetwin::ReferenceCommandOptions refo;
   auto* ref = app.add_subcommand("reference", "ground truth: Embree + TBB Monte Carlo with MIS, written as EXR + PNG");
   ref->add_option("scene", refo.scene, "scene file (JSON, see README)");

@@ -5,6 +5,7 @@
 #include "render/paraboloid.h"
 
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -17,6 +18,7 @@
 #include "mips.h"
 #include "render/gbuffer.h"
 #include "render/passes_vk.h"
+#include "render/shade_inputs.h"
 #include "vk/context.h"
 #include "scene/scene.h"
 
@@ -42,12 +44,11 @@ CameraRays cameraRays(const Scene& scene) {
   return r;
 }
 
-EnvironmentMap loadEnvironment(const std::string& path, std::ostream& log) {
-  ImageRGBA img = loadImageRGBA(path);
+EnvironmentMap environmentFromLevel0(std::vector<float> texels, uint32_t width, uint32_t height) {
   EnvironmentMap env;
   // Policy for the source HDRI (docs/DESIGN.md): NaN and infinite texels become 0 and are counted;
   // negative texels are kept (they are real data in the CC0 maps) and counted.
-  for (float& v : img.texels) {
+  for (float& v : texels) {
     if (!std::isfinite(v)) {
       v = 0.0f;
       ++env.nonFinite;
@@ -55,14 +56,46 @@ EnvironmentMap loadEnvironment(const std::string& path, std::ostream& log) {
       ++env.negative;
     }
   }
-  auto levels = mipChainCpu(img.texels, img.width, img.height, 1, 8);
-  env.texture = std::make_unique<emu::Texture>(packTexture(emu::Format::RGBA32F, img.width, img.height, 1, levels));
+  auto levels = mipChainCpu(texels, width, height, 1, 8);
+  env.texture = std::make_unique<emu::Texture>(packTexture(emu::Format::RGBA32F, width, height, 1, levels));
   env.levels = std::move(levels);
-  env.width = img.width;
-  env.height = img.height;
+  env.width = width;
+  env.height = height;
+  return env;
+}
+
+EnvironmentMap loadEnvironment(const std::string& path, std::ostream& log) {
+  ImageRGBA img = loadImageRGBA(path);
+  EnvironmentMap env = environmentFromLevel0(std::move(img.texels), img.width, img.height);
   if (env.nonFinite) log << "  environment: " << env.nonFinite << " non-finite texel values replaced by 0\n";
   return env;
 }
+
+uint32_t environmentShift(uint32_t width, double degrees) {
+  const double cols = std::fmod(degrees / 360.0, 1.0) * width;
+  return uint32_t(std::lround(cols < 0 ? cols + width : cols)) % width;
+}
+
+EnvironmentMap rotateEnvironment(const EnvironmentMap& env, double degrees) {
+  const uint32_t W = env.width, H = env.height, s = environmentShift(W, degrees);
+  const std::vector<float>& src = env.levels[0];
+  std::vector<float> dst(src.size());
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x)
+      std::memcpy(&dst[4 * (size_t(y) * W + (x + W - s) % W)], &src[4 * (size_t(y) * W + x)], 16);
+  return environmentFromLevel0(std::move(dst), W, H);
+}
+
+namespace {
+// Output path of frame f: OUT itself for a single frame, else OUT's stem + _NNNN.
+std::string frameOut(const std::string& out, uint32_t frames, uint32_t f) {
+  if (frames == 1) return out;
+  std::filesystem::path p(out);
+  std::ostringstream name;
+  name << p.stem().string() << "_" << std::setw(4) << std::setfill('0') << f << p.extension().string();
+  return (p.parent_path() / name.str()).string();
+}
+}  // namespace
 
 int renderCommand(const RenderOptions& opts, std::ostream& log) {
   auto t0 = Clock::now();
@@ -71,66 +104,97 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   if (opts.height) scene.height = opts.height;
   const double tScene = ms(t0);
   if (opts.device != "emu" && opts.device != "vulkan") throw std::invalid_argument("--device " + opts.device + ": expected emu or vulkan");
+  if (opts.frames == 0) throw std::invalid_argument("--frames: expected at least 1");
   const emu::DeviceProfile& dev = emu::profileByName(opts.profile);
   log << "scene " << opts.scene << ": " << scene.objects.size() << " objects, " << scene.triangles() << " triangles, "
       << scene.width << "x" << scene.height << ", environment " << scene.environment << "\n";
   t0 = Clock::now();
-  EnvironmentMap env = loadEnvironment(scene.environment, log);
+  const EnvironmentMap env0 = loadEnvironment(scene.environment, log);
   const double tEnv = ms(t0);
-  std::vector<float> image;
-  std::ostringstream passes;
-  passes << std::fixed << std::setprecision(1);
-  if (opts.device == "emu") {
-    GbufferStats gs;
-    t0 = Clock::now();
-    GBuffer g = gbufferEmu(scene, dev, &gs);
-    const double tGbuf = ms(t0);
-    const ShadeInputs in = shadeInputsEmu(scene, *env.texture, dev);
-    t0 = Clock::now();
-    image = shadeEmu(scene, g, in, dev);
-    const double tShade = ms(t0);
-    if (in.atlas) {
-      passes << "  paraboloid atlas (emu)   " << std::setw(8) << in.atlasMs << " ms  (" << 2 * scene.fisFaceSize << "x"
-             << scene.fisFaceSize << " + MIP chain)\n";
-      passes << "  SH irradiance (emu)      " << std::setw(8) << in.shMs << " ms  (order 3, " << env.width << " x "
-             << env.height << " texels)\n";
-    }
-    passes << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
-           << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
-           << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
-    passes << "  shading (emu, " << scene.technique;
-    if (scene.technique != "mirror") passes << ", " << scene.fisSamples << " samples";
-    passes << ")    " << std::setw(8) << tShade << " ms\n";
-  } else {
-    t0 = Clock::now();
-    vk::Context ctx;
-    GbufferPassVk gpass(ctx, scene);
-    const ShadeInputs in = shadeInputsVulkan(ctx, scene, *env.texture);
-    ShadePassVk spass(ctx, scene, in);
-    const double tSetup = ms(t0);
-    GBuffer g = gpass.run();
-    image = spass.run(g);
-    passes << "  Vulkan set-up (" << ctx.deviceName() << ")  " << std::setw(8) << tSetup << " ms\n";
-    passes << "  G-buffer (vulkan)        " << std::setw(8) << gpass.lastMs << " ms  (submit to read-back)\n";
-    passes << "  shading (vulkan, " << scene.technique << ") " << std::setw(8) << spass.lastMs << " ms  (submit to read-back)\n";
-  }
-  // Passes the technique does not use are not run.
-  passes << "  shadow maps              " << std::setw(8) << "-" << "     (not run: technique " << scene.technique
-         << " uses no visibility)\n";
   std::string out = opts.out;
   if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + ".exr";
-  std::string png = std::filesystem::path(out).replace_extension(".png").string();
-  t0 = Clock::now();
-  writeExr(out, scene.width, scene.height, image);
-  writePngToneMapped(png, scene.width, scene.height, image);
-  const double tWrite = ms(t0);
   log << std::fixed << std::setprecision(1);
   log << "  load scene + meshes      " << std::setw(8) << tScene << " ms\n";
-  log << "  environment + MIP chain  " << std::setw(8) << tEnv << " ms  (" << env.width << "x" << env.height << ", "
-      << env.texture->levelCount() << " levels, " << env.negative << " negative texel values)\n";
-  log << passes.str();
-  log << "  write EXR + PNG          " << std::setw(8) << tWrite << " ms\n";
-  log << "wrote " << out << " and " << png << "\n";
+  log << "  environment + MIP chain  " << std::setw(8) << tEnv << " ms  (" << env0.width << "x" << env0.height << ", "
+      << env0.texture->levelCount() << " levels, " << env0.negative << " negative texel values)\n";
+
+  // Frames: the environment turns by --env-rotate degrees per frame (a whole-column shift of level 0,
+  // then its MIP chain); the technique inputs (atlas + MIP chain, SH, lights) are rebuilt on a frame
+  // whose environment changed and reused otherwise; the G-buffer does not depend on the environment
+  // and is drawn once.
+  ShadeInputsCache cache;
+  std::unique_ptr<vk::Context> ctx;
+  std::unique_ptr<GbufferPassVk> gpass;
+  std::unique_ptr<ShadePassVk> spass;
+  GBuffer g;
+  for (uint32_t f = 0; f < opts.frames; ++f) {
+    std::ostringstream passes;
+    passes << std::fixed << std::setprecision(1);
+    const double degrees = opts.envRotate * f;
+    t0 = Clock::now();
+    const EnvironmentMap rotated = f && environmentShift(env0.width, degrees) ? rotateEnvironment(env0, degrees) : EnvironmentMap{};
+    const EnvironmentMap& env = rotated.texture ? rotated : env0;
+    const double tRotate = ms(t0);
+    std::vector<float> image;
+    if (opts.device == "emu") {
+      GbufferStats gs;
+      t0 = Clock::now();
+      if (f == 0) g = gbufferEmu(scene, dev, &gs);
+      const double tGbuf = ms(t0);
+      const ShadeInputs& in = cache.emu(scene, *env.texture, dev);
+      t0 = Clock::now();
+      image = shadeEmu(scene, g, in, dev);
+      const double tShade = ms(t0);
+      if (rotated.texture)
+        passes << "  environment turned      " << std::setw(8) << tRotate << " ms  (" << degrees << " degrees = "
+               << environmentShift(env0.width, degrees) << " columns, + MIP chain)\n";
+      if (in.atlas && cache.lastRebuilt()) {
+        passes << "  paraboloid atlas (emu)   " << std::setw(8) << in.atlasMs << " ms  (" << 2 * scene.fisFaceSize << "x"
+               << scene.fisFaceSize << " + MIP chain)\n";
+        passes << "  SH irradiance (emu)      " << std::setw(8) << in.shMs << " ms  (order 3, " << env.width << " x "
+               << env.height << " texels)\n";
+      } else if (!cache.lastRebuilt()) {
+        passes << "  technique inputs                -     (environment unchanged: reused)\n";
+      }
+      if (f == 0)
+        passes << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
+               << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
+               << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
+      passes << "  shading (emu, " << scene.technique;
+      if (scene.technique != "mirror") passes << ", " << scene.fisSamples << " samples";
+      passes << ")    " << std::setw(8) << tShade << " ms\n";
+    } else {
+      t0 = Clock::now();
+      if (f == 0) {
+        ctx = std::make_unique<vk::Context>();
+        gpass = std::make_unique<GbufferPassVk>(*ctx, scene);
+      }
+      const ShadeInputs& in = cache.vulkan(*ctx, scene, *env.texture);
+      if (cache.lastRebuilt() || rotated.texture) spass = std::make_unique<ShadePassVk>(*ctx, scene, in);
+      const double tSetup = ms(t0);
+      if (f == 0) g = gpass->run();
+      image = spass->run(g);
+      passes << "  Vulkan set-up (" << ctx->deviceName() << ")  " << std::setw(8) << tSetup << " ms"
+             << (cache.lastRebuilt() ? "" : "  (technique inputs reused)") << "\n";
+      if (f == 0) passes << "  G-buffer (vulkan)        " << std::setw(8) << gpass->lastMs << " ms  (submit to read-back)\n";
+      passes << "  shading (vulkan, " << scene.technique << ") " << std::setw(8) << spass->lastMs << " ms  (submit to read-back)\n";
+    }
+    // Passes the technique does not use are not run.
+    passes << "  shadow maps              " << std::setw(8) << "-" << "     (not run: technique " << scene.technique
+           << " uses no visibility)\n";
+    const std::string exr = frameOut(out, opts.frames, f);
+    const std::string png = std::filesystem::path(exr).replace_extension(".png").string();
+    t0 = Clock::now();
+    writeExr(exr, scene.width, scene.height, image);
+    writePngToneMapped(png, scene.width, scene.height, image);
+    const double tWrite = ms(t0);
+    if (opts.frames > 1) log << "frame " << f << ":\n";
+    log << passes.str();
+    log << "  write EXR + PNG          " << std::setw(8) << tWrite << " ms\n";
+    log << "wrote " << exr << " and " << png << "\n";
+  }
+  if (opts.frames > 1)
+    log << opts.frames << " frames, technique inputs built " << cache.builds() << " time(s)\n";
   return 0;
 }
 

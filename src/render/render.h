@@ -18,6 +18,8 @@ struct RenderOptions {
   std::string out;             // EXR path; default: <scene name>.exr in the current directory
   uint32_t width = 0, height = 0;  // 0: the scene's size
   std::string profile = "lavapipe";  // device profile the emulator follows
+  uint32_t frames = 1;               // frames to render (OUT_NNNN.exr when more than one)
+  double envRotate = 0;              // degrees the environment turns about +y per frame
 };
 
 /// The environment map as both builds sample it: RGBA32F with its full MIP chain from the shared kernel.
@@ -28,6 +30,14 @@ struct EnvironmentMap {
   size_t nonFinite = 0, negative = 0;
 };
 EnvironmentMap loadEnvironment(const std::string& path, std::ostream& log);
+/// The same from level-0 texels (RGBA, rows top to bottom), with the same NaN/inf policy.
+EnvironmentMap environmentFromLevel0(std::vector<float> texels, uint32_t width, uint32_t height);
+/// Whole columns an equirectangular map of `width` shifts for a turn of `degrees` about +y (rounded).
+uint32_t environmentShift(uint32_t width, double degrees);
+/// The environment turned about +y by whole columns (exact: texels move, none is resampled), with
+/// its MIP chain rebuilt. Positive degrees turn it right-handedly about +y: a light at azimuth
+/// atan2(x, -z) = phi moves to phi - degrees (its column u W to u W - shift).
+EnvironmentMap rotateEnvironment(const EnvironmentMap& env, double degrees);
 
 int renderCommand(const RenderOptions& opts, std::ostream& log);
 

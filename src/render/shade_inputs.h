@@ -4,6 +4,7 @@
 // reads the equirectangular map (background) and its light list (render/env_lights.h).
 // A technique's inputs are built only when it needs them.
 #pragma once
+#include <cstdint>
 #include <memory>
 
 #include "emu/device_profile.h"
@@ -28,5 +29,27 @@ struct ShadeInputs {
 
 ShadeInputs shadeInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev);
 ShadeInputs shadeInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::Texture& env);
+
+/// What the technique inputs depend on: the environment's level-0 texels (FNV-1a over their bytes),
+/// its size, and the scene settings that shape them (technique, intensity-free: face size, sample
+/// count of env's lights, map files). Equal keys give bit-identical inputs.
+uint64_t shadeInputsKey(const Scene& scene, const emu::Texture& env);
+
+/// Technique inputs across frames: rebuilt (atlas with its MIP chain, SH, lights, maps) on the frame
+/// whose environment or settings changed, reused otherwise. One per build.
+class ShadeInputsCache {
+ public:
+  const ShadeInputs& emu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev);
+  const ShadeInputs& vulkan(vk::Context& ctx, const Scene& scene, const emu::Texture& env);
+  uint32_t builds() const { return builds_; }     // rebuilds so far
+  bool lastRebuilt() const { return rebuilt_; }   // did the last call rebuild?
+
+ private:
+  template <class Build> const ShadeInputs& get(const Scene& scene, const emu::Texture& env, Build build);
+  bool have_ = false, rebuilt_ = false;
+  uint64_t key_ = 0;
+  uint32_t builds_ = 0;
+  ShadeInputs in_;
+};
 
 }  // namespace shadetwin
