@@ -3,6 +3,9 @@
 // per-stage denormal mode.
 #include <gtest/gtest.h>
 
+#include "emu/fpenv.h"
+#include "shade/instantiate.h"
+
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -30,6 +33,47 @@ TEST(ExactMath, DivIsCorrectlyRoundedOnAnyBits) {
     float got = sc::exDiv(a, b);
     if (std::isnan(want)) ASSERT_EQ(toBits(got), 0x7fc00000u) << a << " / " << b;
     else ASSERT_TRUE(same(got, want)) << a << " / " << b << " got " << got << " want " << want;
+  }
+}
+
+TEST(ExactMath, NativeFastPathsGiveTheRecurrenceBits) {
+  // The C++ builds divide / take square roots natively when every lane is normal (shade/native_exact.h).
+  // Vectors of 8 whose lanes are random normals, or mixed with one special lane (zero, subnormal, inf,
+  // NaN: the whole vector takes the recurrence), in the default mode and under FTZ/DAZ (a flushing
+  // stage): every lane equals the correctly rounded result, subnormal quotients included.
+  namespace x8 = shadetwin::shade::x8;
+  using F8 = emu::F32<8>;
+  std::mt19937 rng(23);
+  const uint32_t specials[] = {0u, 0x80000000u, 1u, 0x007fffffu, 0x7f800000u, 0x7fc00000u, 0x00800000u};
+  for (bool flush : {false, true}) {
+    emu::DenormalScope mode(flush);
+    for (int v = 0; v < 200000; ++v) {
+      F8 a, b, x;
+      for (int l = 0; l < 8; ++l) {
+        // normal exponents in [1, 254]; quotients then range over subnormal to overflow
+        a.set(l, fromBits((rng() & 0x807fffffu) | ((1u + rng() % 254u) << 23)));
+        b.set(l, fromBits((rng() & 0x807fffffu) | ((1u + rng() % 254u) << 23)));
+        x.set(l, fromBits((rng() & 0x007fffffu) | ((1u + rng() % 254u) << 23)));
+      }
+      if (v % 4 == 1) a.set(int(rng() % 8), fromBits(specials[rng() % 7]));
+      if (v % 4 == 2) b.set(int(rng() % 8), fromBits(specials[rng() % 7]));
+      if (v % 4 == 3) x.set(int(rng() % 8), fromBits(specials[rng() % 7]));
+      const F8 q = x8::exDiv(a, b), r = x8::exSqrt(x);
+      for (int l = 0; l < 8; ++l) {
+        float wq, wr;
+        {
+          emu::DenormalScope exact(false);  // the reference: double result rounded to float, no flushing
+          wq = float(double(a[l]) / double(b[l]));
+          wr = float(std::sqrt(double(x[l])));
+        }
+        if (std::isnan(wq)) ASSERT_EQ(toBits(q[l]), 0x7fc00000u);
+        else ASSERT_TRUE(same(q[l], wq)) << a[l] << " / " << b[l] << " flush " << flush;
+        if (std::isnan(wr)) ASSERT_EQ(toBits(r[l]), 0x7fc00000u);
+        else ASSERT_TRUE(same(r[l], wr)) << x[l] << " flush " << flush;
+        ASSERT_TRUE(same(sc::exDiv(a[l], b[l]), q[l]));  // scalar build (fast path or not): the same bits
+        ASSERT_TRUE(same(sc::exSqrt(x[l]), r[l]));
+      }
+    }
   }
 }
 

@@ -71,6 +71,12 @@ std::vector<MaterialGpu> materialRecords(const Scene& scene, bool withBrdf) {
   return out;
 }
 
+uint32_t brdfKindsOf(const std::vector<MaterialGpu>& records) {
+  uint32_t kinds = 0;
+  for (const MaterialGpu& r : records) kinds |= 1u << r.kind[0];
+  return kinds;
+}
+
 MaterialMapImages loadMaterialMaps(const Scene& scene) {
   const std::vector<std::string> files = materialMapFiles(scene);
   MaterialMapImages out;

@@ -35,6 +35,10 @@ std::vector<std::string> materialMapFiles(const Scene& scene);
 /// they cannot sample (mirror).
 std::vector<MaterialGpu> materialRecords(const Scene& scene, bool withBrdf);
 
+/// The BRDF kinds the records use, bit k for kind k: the kSceneBrdfKinds specialization constant of
+/// the shading kernels (shade/prelude.h), so kinds no material has are compiled out on the GPU.
+uint32_t brdfKindsOf(const std::vector<MaterialGpu>& records);
+
 /// Level 0 of the maps texture: every map file as float RGBA, one layer each (the files must share one
 /// size; throws FileError naming the file otherwise, or for a non-finite texel). No maps: one white
 /// 1x1 layer (kernels bind something; records then name no layer).

@@ -61,6 +61,8 @@ struct ShadePassVk::Impl {
   vk::Image env;
   vk::Sampler sampler;
   vk::Buffer materials;
+  std::vector<MaterialGpu> records;
+  uint32_t kinds[1];  // specialization constant 0: kSceneBrdfKinds
   vk::Kernel kernel;
   float envMaxLod;
   vk::Buffer extra;  // binding 4: fis, 9 vec4 of E/pi coefficients; env, the lights
@@ -82,7 +84,9 @@ struct ShadePassVk::Impl {
         env(c, VK_FORMAT_R32G32B32A32_SFLOAT, tex.width(), tex.height(), 1, tex.levels(), 16, VK_IMAGE_VIEW_TYPE_2D),
         sampler(c, environmentSamplerInfo(ki.repeatU)),
         materials(c, std::max<size_t>(1, s.materials.size()) * sizeof(MaterialGpu)),
-        kernel(c, vk::Stage::Compute, ki.spirv, std::span<const VkDescriptorType>(kLayout, ki.bindings), uint32_t(ki.pushBytes)),
+        records(materialRecords(s, ki.brdf)), kinds{brdfKindsOf(records)},
+        kernel(c, vk::Stage::Compute, ki.spirv, std::span<const VkDescriptorType>(kLayout, ki.bindings), uint32_t(ki.pushBytes),
+               {}, std::span<const uint32_t>(kinds, ki.brdf ? 1 : 0)),
         envMaxLod(float(tex.levelCount() - 1)), extra(c, std::max<size_t>(9 * 16, in.lights.data.size() * 4)),
         maps(c, VK_FORMAT_R32G32B32A32_SFLOAT, mapTex.width(), mapTex.height(), mapTex.layers(), mapTex.levels(), 16,
              VK_IMAGE_VIEW_TYPE_2D_ARRAY),
@@ -98,9 +102,8 @@ struct ShadePassVk::Impl {
       std::memcpy(extra.data(), in.lights.data.data(), in.lights.data.size() * 4);
     if (tex.format() != emu::Format::RGBA32F || mapTex.format() != emu::Format::RGBA32F)
       throw vk::Error("shading pass: the environment and the material maps must be RGBA32F");
-    const std::vector<MaterialGpu> mats = materialRecords(s, info.brdf);
-    for (size_t i = 0; i < mats.size(); ++i)
-      std::memcpy(materials.as<uint8_t>() + i * materialStride(), &mats[i], materialStride());
+    for (size_t i = 0; i < records.size(); ++i)
+      std::memcpy(materials.as<uint8_t>() + i * materialStride(), &records[i], materialStride());
   }
 };
 

@@ -284,48 +284,51 @@ BrdfSample sampleLafortune(BrdfParams p, Float3 wo, Float2 u) {
   return BrdfSample(s.w, pdf, w);
 }
 
-// ---- dispatch on the per-lane kind (IF_ANY skips kinds no lane has) ----
+// ---- dispatch on the per-lane kind (IF_ANY skips kinds no lane has; on the GPU a kind absent from
+// the scene, kSceneBrdfKinds, is compiled out) ----
+Mask brdfKindIs(Uint kind, uint k) { return kind == k && Mask((kSceneBrdfKinds & (1u << k)) != 0u); }
+
 BrdfSample sampleBrdf(BrdfParams p, Float3 wo, Float2 u) {
   BrdfSample r = BrdfSample(Float3(0.0f, 0.0f, 1.0f), 0.0f, 0.0f);
-  Mask m = p.kind == kBrdfPhong;
+  Mask m = brdfKindIs(p.kind, kBrdfPhong);
   IF_ANY(m) { r = selectSample(m, samplePhong(wo, p.e, u), r); }
-  m = p.kind == kBrdfBlinn;
+  m = brdfKindIs(p.kind, kBrdfBlinn);
   IF_ANY(m) { r = selectSample(m, sampleBlinn(wo, p.e, u), r); }
-  m = p.kind == kBrdfWard;
+  m = brdfKindIs(p.kind, kBrdfWard);
   IF_ANY(m) { r = selectSample(m, sampleWard(wo, p.ax, p.ay, u), r); }
-  m = p.kind == kBrdfLafortune;
+  m = brdfKindIs(p.kind, kBrdfLafortune);
   IF_ANY(m) { r = selectSample(m, sampleLafortune(p, wo, u), r); }
-  m = p.kind == kBrdfGgx;
+  m = brdfKindIs(p.kind, kBrdfGgx);
   IF_ANY(m) { r = selectSample(m, sampleGgx(wo, p.ax, u), r); }
   return r;
 }
 
 Float brdfPdf(BrdfParams p, Float3 wo, Float3 wi) {
   Float r = 0.0f;
-  Mask m = p.kind == kBrdfPhong;
+  Mask m = brdfKindIs(p.kind, kBrdfPhong);
   IF_ANY(m) { r = select(m, phongPdf(wo, p.e, wi), r); }
-  m = p.kind == kBrdfBlinn;
+  m = brdfKindIs(p.kind, kBrdfBlinn);
   IF_ANY(m) { r = select(m, blinnPdf(wo, p.e, wi), r); }
-  m = p.kind == kBrdfWard;
+  m = brdfKindIs(p.kind, kBrdfWard);
   IF_ANY(m) { r = select(m, wardPdf(wo, p.ax, p.ay, wi), r); }
-  m = p.kind == kBrdfLafortune;
+  m = brdfKindIs(p.kind, kBrdfLafortune);
   IF_ANY(m) { r = select(m, lafortunePdf(p, wo, wi), r); }
-  m = p.kind == kBrdfGgx;
+  m = brdfKindIs(p.kind, kBrdfGgx);
   IF_ANY(m) { r = select(m, ggxPdf(wo, p.ax, wi), r); }
   return r;
 }
 
 Float brdfEval(BrdfParams p, Float3 wo, Float3 wi) {
   Float r = 0.0f;
-  Mask m = p.kind == kBrdfPhong;
+  Mask m = brdfKindIs(p.kind, kBrdfPhong);
   IF_ANY(m) { r = select(m, phongEval(wo, p.e, wi), r); }
-  m = p.kind == kBrdfBlinn;
+  m = brdfKindIs(p.kind, kBrdfBlinn);
   IF_ANY(m) { r = select(m, blinnEval(wo, p.e, wi), r); }
-  m = p.kind == kBrdfWard;
+  m = brdfKindIs(p.kind, kBrdfWard);
   IF_ANY(m) { r = select(m, wardEval(wo, p.ax, p.ay, wi), r); }
-  m = p.kind == kBrdfLafortune;
+  m = brdfKindIs(p.kind, kBrdfLafortune);
   IF_ANY(m) { r = select(m, lafortuneEval(p, wo, wi), r); }
-  m = p.kind == kBrdfGgx;
+  m = brdfKindIs(p.kind, kBrdfGgx);
   IF_ANY(m) { r = select(m, ggxEval(wo, p.ax, wi), r); }
   return r;
 }

@@ -63,6 +63,8 @@ Uint xmRoundPack(Uint sign, Uint sig, Int e2, Mask sticky) {
 // subnormal results, and need no case analysis of the last-ulp correction (docs/DESIGN.md).
 
 Float exDiv(Float a, Float b) {
+  NativeResult fast = nativeDiv(a, b);  // C++ builds only: same bits where every lane is normal
+  if (fast.ok) return fast.value;
   Uint ua = floatBitsToUint(a);
   Uint ub = floatBitsToUint(b);
   Uint sign = (ua ^ ub) & 0x80000000u;
@@ -91,6 +93,8 @@ Float exDiv(Float a, Float b) {
 }
 
 Float exSqrt(Float x) {
+  NativeResult fast = nativeSqrt(x);
+  if (fast.ok) return fast.value;
   Uint ux = floatBitsToUint(x);
   Uint ax = ux & 0x7fffffffu;
   Mask nan = ax > 0x7f800000u || ux > 0x80000000u;  // NaN, or negative non-zero (incl. -inf)

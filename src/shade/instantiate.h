@@ -10,6 +10,7 @@
 #include "emu/lanes.h"
 #include "shade/vec.h"
 #include "shade/sampler_bridge.h"
+#include "shade/native_exact.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"

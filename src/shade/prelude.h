@@ -33,6 +33,12 @@
 #define Sampler2D sampler2D
 #define Sampler2DArray sampler2DArray
 
+// BRDF kinds the scene's materials use (bit k set: kind k, shade/brdf.h), a specialization constant
+// the host sets per pipeline (render/shade_vk.cpp), so the code of kinds no material has is not
+// compiled at all (a GPU runs both sides of a divergent branch under a mask; lavapipe does for every
+// branch). Default: every kind. The C++ builds skip absent kinds at run time (IF_ANY) instead.
+layout(constant_id = 0) const uint kSceneBrdfKinds = 0xffffffffu;
+
 // select(m, a, b): a where m is true, else b. GLSL mix() with a bool selector picks without arithmetic.
 float select(bool m, float a, float b) { return mix(b, a, m); }
 vec2 select(bool m, vec2 a, vec2 b) { return mix(b, a, bvec2(m)); }
@@ -41,6 +47,11 @@ vec4 select(bool m, vec4 a, vec4 b) { return mix(b, a, bvec4(m)); }
 int select(bool m, int a, int b) { return mix(b, a, m); }
 uint select(bool m, uint a, uint b) { return mix(b, a, m); }
 bool select(bool m, bool a, bool b) { return mix(b, a, m); }
+// Exact-math fast paths: the C++ builds use the CPU's IEEE operation where it gives the same bits
+// (src/shade/native_exact.h); a GPU always runs the portable recurrence.
+struct NativeResult { bool ok; float value; };
+NativeResult nativeDiv(float a, float b) { return NativeResult(false, 0.0f); }
+NativeResult nativeSqrt(float x) { return NativeResult(false, 0.0f); }
 // texelFetch of a 2D texture with separate coordinates (the C++ side has no ivec2).
 vec4 texelFetch2D(sampler2D s, int x, int y, int level) { return texelFetch(s, ivec2(x, y), level); }
 // textureLod of a 2D array texture with the layer apart, and the size of its level 0 as floats.
@@ -89,6 +100,10 @@ using Sampler2D = ::shadetwin::shade::Sampler2D;
 inline Float4 textureLod(const Sampler2D& s, Float2 uv, Float lod) {
   return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod);
 }
+inline constexpr uint32_t kSceneBrdfKinds = 0xffffffffu;  // GLSL: a specialization constant
+using NativeResult = ::shadetwin::shade::NativeResult<Float>;
+inline NativeResult nativeDiv(Float a, Float b) { return ::shadetwin::shade::nativeDiv(a, b); }
+inline NativeResult nativeSqrt(Float x) { return ::shadetwin::shade::nativeSqrt(x); }
 using Sampler2DArray = ::shadetwin::shade::Sampler2D;  // the emulated texture has layers
 inline Float4 textureLodLayer(const Sampler2DArray& s, Float2 uv, Float layer, Float lod) {
   return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod, layer);

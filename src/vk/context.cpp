@@ -338,7 +338,7 @@ RenderTarget::~RenderTarget() {
 }
 
 Kernel::Kernel(Context& ctx, Stage stage, std::span<const uint32_t> spirv, std::span<const VkDescriptorType> layout,
-               uint32_t pushBytes, std::span<const uint32_t> vertexSpirv)
+               uint32_t pushBytes, std::span<const uint32_t> vertexSpirv, std::span<const uint32_t> specialization)
     : ctx_(ctx), stage_(stage), pushBytes_(pushBytes), layout_(layout.begin(), layout.end()) {
   VkDevice dev = ctx.device();
   VkShaderStageFlags stageBit = stage == Stage::Compute ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -366,7 +366,11 @@ Kernel::Kernel(Context& ctx, Stage stage, std::span<const uint32_t> spirv, std::
   module_ = makeShaderModule(dev, spirv);
   if (stage == Stage::Compute) {
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module_, "main", nullptr};
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < specialization.size(); ++i) entries.push_back({i, 4 * i, 4});
+    const VkSpecializationInfo spec{uint32_t(entries.size()), entries.data(), specialization.size_bytes(), specialization.data()};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module_, "main",
+                specialization.empty() ? nullptr : &spec};
     ci.layout = pipeLayout_;
     check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_), "vkCreateComputePipelines");
     return;

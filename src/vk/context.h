@@ -152,8 +152,9 @@ struct Binding {
 /// (full-screen triangle over a width x ceil(count/width) target, item = y * width + x).
 class Kernel {
  public:
+  /// `specialization[i]` sets the 32-bit specialization constant constant_id = i (compute stage).
   Kernel(Context& ctx, Stage stage, std::span<const uint32_t> spirv, std::span<const VkDescriptorType> layout,
-         uint32_t pushBytes, std::span<const uint32_t> vertexSpirv = {});
+         uint32_t pushBytes, std::span<const uint32_t> vertexSpirv = {}, std::span<const uint32_t> specialization = {});
   ~Kernel();
   Kernel(const Kernel&) = delete;
   Kernel& operator=(const Kernel&) = delete;
