@@ -1,0 +1,114 @@
+#include "render/env_kdtree.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <queue>
+#include <stdexcept>
+
+namespace shadetwin {
+
+std::vector<double> envSamplingWeights(const float* rgba, uint32_t width, uint32_t height) {
+  std::vector<double> w(size_t(width) * height);
+  for (uint32_t y = 0; y < height; ++y) {
+    const double s = std::sin((y + 0.5) * std::numbers::pi / height);
+    for (uint32_t x = 0; x < width; ++x) {
+      const float* t = rgba + 4 * (size_t(y) * width + x);
+      const double lum = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+      w[size_t(y) * width + x] = std::isfinite(lum) && lum > 0 ? lum * s : 0.0;
+    }
+  }
+  return w;
+}
+
+namespace {
+// Summed-area table with a zero border: S(x, y) = sum over [0, x) x [0, y).
+struct Sat {
+  uint32_t W, H;
+  std::vector<double> s;
+  Sat(const std::vector<double>& v, uint32_t w, uint32_t h, bool squared) : W(w), H(h), s(size_t(w + 1) * (h + 1), 0.0) {
+    for (uint32_t y = 0; y < h; ++y) {
+      double row = 0;
+      for (uint32_t x = 0; x < w; ++x) {
+        const double a = v[size_t(y) * w + x];
+        row += squared ? a * a : a;
+        s[size_t(y + 1) * (w + 1) + x + 1] = s[size_t(y) * (w + 1) + x + 1] + row;
+      }
+    }
+  }
+  double at(uint32_t x, uint32_t y) const { return s[size_t(y) * (W + 1) + x]; }
+  double rect(uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) const {
+    return at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0);
+  }
+};
+
+struct Split {
+  bool ok = false;
+  bool alongX = false;  // true: cut between columns (x = pos)
+  uint32_t pos = 0;
+};
+
+// The cut of block b maximizing lSum^2/lSize + rSum^2/rSize over both axes (ties: the first found,
+// x before y, low positions first).
+Split bestSplit(const Sat& sum, const EnvBlock& b) {
+  Split best;
+  double bestScore = -1;
+  const double h = b.y1 - b.y0, w = b.x1 - b.x0;
+  for (uint32_t x = b.x0 + 1; x < b.x1; ++x) {
+    const double l = sum.rect(b.x0, b.y0, x, b.y1), r = b.sum - l;
+    const double score = l * l / ((x - b.x0) * h) + r * r / ((b.x1 - x) * h);
+    if (score > bestScore) bestScore = score, best = {true, true, x};
+  }
+  for (uint32_t y = b.y0 + 1; y < b.y1; ++y) {
+    const double l = sum.rect(b.x0, b.y0, b.x1, y), r = b.sum - l;
+    const double score = l * l / ((y - b.y0) * w) + r * r / ((b.y1 - y) * w);
+    if (score > bestScore) bestScore = score, best = {true, false, y};
+  }
+  return best;
+}
+}  // namespace
+
+EnvKdTree buildEnvKdTree(const std::vector<double>& w, uint32_t width, uint32_t height, uint32_t blocks) {
+  if (width == 0 || height == 0) throw std::invalid_argument("kd-tree: zero-sized environment");
+  if (w.size() != size_t(width) * height) throw std::invalid_argument("kd-tree: weight count does not match the size");
+  if (blocks == 0) throw std::invalid_argument("kd-tree: --blocks must be at least 1");
+  const Sat sum(w, width, height, false), sq(w, width, height, true);
+  auto make = [&](uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
+    EnvBlock b{x0, y0, x1, y1};
+    b.sum = sum.rect(x0, y0, x1, y1);
+    // SSE in the form sum(w^2) - sum^2/n; rounding can make it slightly negative: clamp.
+    b.sse = std::max(0.0, sq.rect(x0, y0, x1, y1) - b.sum * b.sum / b.texels());
+    return b;
+  };
+  EnvKdTree t;
+  t.width = width, t.height = height;
+  t.blocks.push_back(make(0, 0, width, height));
+  t.total = t.blocks[0].sum;
+  // Max-heap of block indices by SSE (ties: the older block first, for a deterministic order).
+  auto less = [&](uint32_t a, uint32_t b) {
+    const double sa = t.blocks[a].sse, sb = t.blocks[b].sse;
+    return sa != sb ? sa < sb : a > b;
+  };
+  std::priority_queue<uint32_t, std::vector<uint32_t>, decltype(less)> heap(less);
+  heap.push(0);
+  // A block whose SSE is below this relative to the map's is treated as constant (rounding noise of
+  // the SAT differences, not structure).
+  const double floorSse = 1e-12 * (sq.rect(0, 0, width, height) + 1e-300);
+  while (t.blocks.size() < blocks && !heap.empty()) {
+    const uint32_t i = heap.top();
+    heap.pop();
+    const EnvBlock b = t.blocks[i];
+    if (b.sse <= floorSse || b.texels() < 2) continue;
+    const Split s = bestSplit(sum, b);
+    if (!s.ok) continue;
+    const EnvBlock l = s.alongX ? make(b.x0, b.y0, s.pos, b.y1) : make(b.x0, b.y0, b.x1, s.pos);
+    const EnvBlock r = s.alongX ? make(s.pos, b.y0, b.x1, b.y1) : make(b.x0, s.pos, b.x1, b.y1);
+    t.blocks[i] = l;
+    t.blocks.push_back(r);
+    heap.push(i);
+    heap.push(uint32_t(t.blocks.size() - 1));
+  }
+  return t;
+}
+
+}  // namespace shadetwin
