@@ -87,8 +87,7 @@ void countFisPass(const Setup& s) {
   const GBuffer& g = s.g;
   const emu::DeviceProfile& dev = emu::lavapipeProfile();
   const shade::Sampler2D atlas = environmentSampler(*s.in.atlas, dev, false);
-  shade::Sampler2D maps = environmentSampler(*s.in.maps, dev, true);
-  maps.desc.addressV = emu::AddressMode::Repeat;
+  const shade::Sampler2D maps = materialMapSampler(*s.in.maps, dev);
   const std::vector<MaterialGpu> mats = materialRecords(scene, true);
   const CameraRays cam = cameraRays(scene);
   CV3 c[9];

@@ -122,9 +122,9 @@ TEST(MapLod, MatchesTheVulkanScaleFactor) {
 // The textured scene with ks = 0 under a constant environment L: every sphere pixel is kd * map * L
 // (the SH irradiance of a constant map is L to 2e-5). The FIS pass filters the map over the pixel's
 // footprint (trilinear at the LOD of the G-buffer's uv derivatives); the expectation point-samples it
-// at the pixel's uv in double precision (bilinear, level 0, texel centres at (i + 1/2) / w, rows top
-// to bottom as in the file): they agree away from checker edges, which catches a flipped or shifted
-// uv or a wrong layer; without the map most pixels are far off.
+// at the pixel's uv as the reference renderer does (mapBilinear: double, level 0). They agree away
+// from checker edges, which catches a flipped or shifted uv or a wrong layer; without the map most
+// pixels are far off.
 TEST(MaterialMaps, DiffuseMapIsKdTimesMapTimesL) {
   shadetwin::Scene s = shadetwin::loadScene(src("scenes/textured.json"));
   s.width = 576, s.height = 192;  // checker squares about 12 pixels wide: filtering blurs only their edges
@@ -137,24 +137,13 @@ TEST(MaterialMaps, DiffuseMapIsKdTimesMapTimesL) {
   const std::vector<float> fis = shadetwin::shadeEmu(s, g, shadetwin::shadeInputsEmu(s, env, dev()), dev());
   const shadetwin::MaterialMapImages map = shadetwin::loadMaterialMaps(s);
   ASSERT_NE(shadetwin::materialMapFiles(s)[0].find("checker"), std::string::npos);  // layer 0
-  auto bilinear = [&](double u, double v, int c) {
-    const int64_t w = map.width, h = map.height;
-    const double x = u * double(w) - 0.5, y = v * double(h) - 0.5, fx = std::floor(x), fy = std::floor(y);
-    auto t = [&](int64_t i, int64_t j) {
-      i = ((i % w) + w) % w, j = ((j % h) + h) % h;
-      return double(map.texels[(size_t(j) * size_t(w) + size_t(i)) * 4 + size_t(c)]);
-    };
-    const int64_t i0 = int64_t(fx), j0 = int64_t(fy);
-    const double ax = x - fx, ay = y - fy;
-    return (1 - ay) * ((1 - ax) * t(i0, j0) + ax * t(i0 + 1, j0)) + ay * ((1 - ax) * t(i0, j0 + 1) + ax * t(i0 + 1, j0 + 1));
-  };
   std::vector<double> rel, relPlain;
   for (size_t p = 0; p < size_t(s.width) * s.height; ++p) {
     const float* t = &g.texels[p * shadetwin::kGbufFloats];
     if (t[3] == 0.0f) continue;
     const shadetwin::Material& m = s.materials[sc::materialSlot(t[3], 3)];
     for (int k = 0; k < 3; ++k) {
-      const double want = m.diffuse[size_t(k)] * bilinear(t[7], t[11], k) * L;
+      const double want = m.diffuse[size_t(k)] * shadetwin::mapBilinear(map, 0, t[7], t[11], k) * L;
       rel.push_back(std::fabs(fis[4 * p + size_t(k)] - want) / want);
       relPlain.push_back(std::fabs(m.diffuse[size_t(k)] * L - want) / want);
     }

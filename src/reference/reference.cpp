@@ -251,17 +251,7 @@ struct RefMaps {
     return -1;
   }
   void lookup(int layer, double u, double v, double out[3]) const {
-    const int64_t w = images.width, h = images.height;
-    const double x = u * double(w) - 0.5, y = v * double(h) - 0.5;
-    const double fx = std::floor(x), fy = std::floor(y), ax = x - fx, ay = y - fy;
-    auto texel = [&](int64_t i, int64_t j, int c) {
-      i = ((i % w) + w) % w, j = ((j % h) + h) % h;
-      return double(images.texels[((size_t(layer) * size_t(h) + size_t(j)) * size_t(w) + size_t(i)) * 4 + size_t(c)]);
-    };
-    const int64_t i0 = int64_t(fx), j0 = int64_t(fy);
-    for (int c = 0; c < 3; ++c)
-      out[c] = (1 - ay) * ((1 - ax) * texel(i0, j0, c) + ax * texel(i0 + 1, j0, c)) +
-               ay * ((1 - ax) * texel(i0, j0 + 1, c) + ax * texel(i0 + 1, j0 + 1, c));
+    for (int c = 0; c < 3; ++c) out[c] = mapBilinear(images, uint32_t(layer), u, v, c);
   }
   /// The material at uv: kd, ks times their maps; roughness (ward, ggx) times the map's red channel.
   RefBrdf apply(const RefBrdf& b, const Material& m, double u, double v) const {

@@ -70,6 +70,9 @@ void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const
 /// Emulated sampler of an environment texture: trilinear, clamp in v, repeat (equirectangular map) or
 /// clamp (paraboloid atlas) in u; the emulator's side of environmentSamplerInfo (render/passes_vk.h).
 shade::Sampler2D environmentSampler(const emu::Texture& tex, const emu::DeviceProfile& dev, bool repeatU);
+/// Emulated sampler of the material maps (render/material.h): trilinear, repeat in u and v; the
+/// emulator's side of materialMapSamplerInfo (render/shade_vk.cpp).
+shade::Sampler2D materialMapSampler(const emu::Texture& tex, const emu::DeviceProfile& dev);
 
 /// Mode of the FIS pass for the scene's technique (kFisFiltered / kFisUnfiltered / kFisStochastic).
 uint32_t fisMode(const Scene& scene);

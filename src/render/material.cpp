@@ -97,6 +97,19 @@ MaterialMapImages loadMaterialMaps(const Scene& scene) {
   return out;
 }
 
+double mapBilinear(const MaterialMapImages& m, uint32_t layer, double u, double v, int c) {
+  const int64_t w = m.width, h = m.height;
+  const double x = u * double(w) - 0.5, y = v * double(h) - 0.5, fx = std::floor(x), fy = std::floor(y);
+  const double ax = x - fx, ay = y - fy;
+  auto texel = [&](int64_t i, int64_t j) {
+    i = ((i % w) + w) % w, j = ((j % h) + h) % h;
+    return double(m.texels[((size_t(layer) * size_t(h) + size_t(j)) * size_t(w) + size_t(i)) * 4 + size_t(c)]);
+  };
+  const int64_t i0 = int64_t(fx), j0 = int64_t(fy);
+  return (1 - ay) * ((1 - ax) * texel(i0, j0) + ax * texel(i0 + 1, j0)) +
+         ay * ((1 - ax) * texel(i0, j0 + 1) + ax * texel(i0 + 1, j0 + 1));
+}
+
 emu::Texture materialMapsEmu(const MaterialMapImages& m) {
   return packTexture(emu::Format::RGBA32F, m.width, m.height, m.layers, mipChainCpu(m.texels, m.width, m.height, m.layers, 8));
 }

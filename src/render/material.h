@@ -47,6 +47,9 @@ struct MaterialMapImages {
   std::vector<float> texels{1.0f, 1.0f, 1.0f, 1.0f};
 };
 MaterialMapImages loadMaterialMaps(const Scene& scene);
+/// Channel `c` of layer `layer` at (u, v), bilinear at level 0 with repeat addressing, in double
+/// precision (texel centres at (i + 1/2) / w, rows top to bottom): the reference renderer's lookup.
+double mapBilinear(const MaterialMapImages& maps, uint32_t layer, double u, double v, int c);
 
 /// The maps texture (RGBA32F, full MIP chain from the shared downsampling kernel) built by the
 /// emulator (SIMD build) or on a Vulkan device; the two chains are bit-identical (tests/mips_test).

@@ -133,6 +133,12 @@ shade::Sampler2D environmentSampler(const emu::Texture& tex, const emu::DevicePr
   return s;
 }
 
+shade::Sampler2D materialMapSampler(const emu::Texture& tex, const emu::DeviceProfile& dev) {
+  shade::Sampler2D s = environmentSampler(tex, dev, true);
+  s.desc.addressV = emu::AddressMode::Repeat;
+  return s;
+}
+
 uint32_t fisMode(const Scene& scene) {
   if (scene.technique == "unfiltered") return shade::scalar::kFisUnfiltered;
   if (scene.technique == "stochastic") return shade::scalar::kFisStochastic;
@@ -222,19 +228,12 @@ shade::x8::SurfaceMaterial surface(const PixelBlock& p, const std::vector<Materi
   return shade::x8::surfaceMaterial(maps, m.diffuse, m.specular, m.brdf, m.maps[0], m.maps[1], m.maps[2], p.g1, p.g2, p.g3);
 }
 
-// Material maps: trilinear, repeat in u and v (the Vulkan side: materialMapSamplerInfo).
-shade::Sampler2D mapSampler(const emu::Texture& tex, const emu::DeviceProfile& dev) {
-  shade::Sampler2D s = environmentSampler(tex, dev, true);
-  s.desc.addressV = emu::AddressMode::Repeat;
-  return s;
-}
-
 // Technique env: the light loop of shade_env.comp (light 0 first, one envAddLight each).
 void shadeEnvEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
                  std::vector<float>& out) {
   const shade::Sampler2D s = environmentSampler(*in.environment, dev, true);
   const F8 intensity(scene.environmentIntensity);
-  const shade::Sampler2D maps = mapSampler(*in.maps, dev);
+  const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);
   const std::vector<MaterialGpu> mats = materialRecords(scene, true);
   const std::vector<float>& L = in.lights.data;
   shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
@@ -260,7 +259,7 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
   for (int k = 0; k < 9; ++k) c[k] = splat(&in.sh.c[3 * size_t(k)]);
   const shade::x8::ShRgb sh{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8]};
   const uint32_t mode = fisMode(scene);
-  const shade::Sampler2D maps = mapSampler(*in.maps, dev);
+  const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);
   const std::vector<MaterialGpu> mats = materialRecords(scene, true);
   shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
     const auto m = surface(p, mats, maps);

@@ -21,14 +21,10 @@
 #include "render/shade_inputs.h"
 #include "vk/context.h"
 #include "scene/scene.h"
+#include "util/timer.h"
 
 namespace shadetwin {
-namespace {
-
 using Clock = std::chrono::steady_clock;
-double ms(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-}  // namespace
 
 CameraRays cameraRays(const Scene& scene) {
   const CameraBasis b = scene.basis();
@@ -102,7 +98,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   Scene scene = loadScene(opts.scene);
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
-  const double tScene = ms(t0);
+  const double tScene = msSince(t0);
   if (opts.device != "emu" && opts.device != "vulkan") throw std::invalid_argument("--device " + opts.device + ": expected emu or vulkan");
   if (opts.frames == 0) throw std::invalid_argument("--frames: expected at least 1");
   const emu::DeviceProfile& dev = emu::profileByName(opts.profile);
@@ -110,7 +106,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       << scene.width << "x" << scene.height << ", environment " << scene.environment << "\n";
   t0 = Clock::now();
   const EnvironmentMap env0 = loadEnvironment(scene.environment, log);
-  const double tEnv = ms(t0);
+  const double tEnv = msSince(t0);
   std::string out = opts.out;
   if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + ".exr";
   log << std::fixed << std::setprecision(1);
@@ -134,17 +130,17 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     t0 = Clock::now();
     const EnvironmentMap rotated = f && environmentShift(env0.width, degrees) ? rotateEnvironment(env0, degrees) : EnvironmentMap{};
     const EnvironmentMap& env = rotated.texture ? rotated : env0;
-    const double tRotate = ms(t0);
+    const double tRotate = msSince(t0);
     std::vector<float> image;
     if (opts.device == "emu") {
       GbufferStats gs;
       t0 = Clock::now();
       if (f == 0) g = gbufferEmu(scene, dev, &gs);
-      const double tGbuf = ms(t0);
+      const double tGbuf = msSince(t0);
       const ShadeInputs& in = cache.emu(scene, *env.texture, dev);
       t0 = Clock::now();
       image = shadeEmu(scene, g, in, dev);
-      const double tShade = ms(t0);
+      const double tShade = msSince(t0);
       if (rotated.texture)
         passes << "  environment turned      " << std::setw(8) << tRotate << " ms  (" << degrees << " degrees = "
                << environmentShift(env0.width, degrees) << " columns, + MIP chain)\n";
@@ -171,7 +167,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       }
       const ShadeInputs& in = cache.vulkan(*ctx, scene, *env.texture);
       if (cache.lastRebuilt() || rotated.texture) spass = std::make_unique<ShadePassVk>(*ctx, scene, in);
-      const double tSetup = ms(t0);
+      const double tSetup = msSince(t0);
       if (f == 0) g = gpass->run();
       image = spass->run(g);
       passes << "  Vulkan set-up (" << ctx->deviceName() << ")  " << std::setw(8) << tSetup << " ms"
@@ -187,7 +183,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     t0 = Clock::now();
     writeExr(exr, scene.width, scene.height, image);
     writePngToneMapped(png, scene.width, scene.height, image);
-    const double tWrite = ms(t0);
+    const double tWrite = msSince(t0);
     if (opts.frames > 1) log << "frame " << f << ":\n";
     log << passes.str();
     log << "  write EXR + PNG          " << std::setw(8) << tWrite << " ms\n";

@@ -95,6 +95,15 @@ struct Reader {
     if (!j.at(k).is_string()) fail(key, "expected a string, got " + j.at(k).dump());
     return j.at(k).get<std::string>();
   }
+  /// `file` resolved against the scene's directory `dir` (unless absolute), normalized; it must exist
+  /// (for a path under assets/ the message says how to fetch it).
+  std::string existingPath(const fs::path& dir, const std::string& file, const std::string& key) const {
+    const fs::path p = (fs::path(file).is_absolute() ? fs::path(file) : dir / file).lexically_normal();
+    if (!fs::exists(p))
+      fail(key, "file not found: " + p.string() +
+                    (file.find("assets/") != std::string::npos ? " (fetch the assets with: bash scripts/setup.sh)" : ""));
+    return p.string();
+  }
 };
 
 Mat4 translate(Vec3 t) {
@@ -207,12 +216,7 @@ Scene loadScene(const std::string& path) {
   {
     const json& e = j["environment"];
     R.keys(e, "environment", {"file", "intensity"});
-    std::string file = R.string(e, "environment.file", "", true);
-    fs::path p = fs::path(file).is_absolute() ? fs::path(file) : dir / file;
-    s.environment = p.lexically_normal().string();
-    if (!fs::exists(p))
-      R.fail("environment.file", "file not found: " + s.environment +
-                                     (file.find("assets/") != std::string::npos ? " (fetch the assets with: bash scripts/setup.sh)" : ""));
+    s.environment = R.existingPath(dir, R.string(e, "environment.file", "", true), "environment.file");
     s.environmentIntensity = R.number(e, "environment.intensity", 1, 0, 1e9f);
   }
   s.technique = R.string(j, "technique", "fis");
@@ -266,14 +270,8 @@ Scene loadScene(const std::string& path) {
         R.fail(key + ".lobes", "missing: a lafortune material needs 1 or 2 lobes, e.g. [{\"c\": [-1, -1, 1], \"n\": 60, \"rho\": 9.7}]");
       }
       auto map = [&](const char* name) {
-        const std::string k = key + "." + name;
-        std::string file = R.string(m, k, "");
-        if (file.empty()) return file;
-        fs::path p = fs::path(file).is_absolute() ? fs::path(file) : dir / file;
-        if (!fs::exists(p))
-          R.fail(k, "file not found: " + p.lexically_normal().string() +
-                        (file.find("assets/") != std::string::npos ? " (fetch the assets with: bash scripts/setup.sh)" : ""));
-        return p.lexically_normal().string();
+        const std::string k = key + "." + name, file = R.string(m, k, "");
+        return file.empty() ? file : R.existingPath(dir, file, k);
       };
       mat.diffuseMap = map("diffuse_map");
       mat.specularMap = map("specular_map");
@@ -305,9 +303,7 @@ Scene loadScene(const std::string& path) {
         else if (spec == "npm:bunny") mesh = loadNpmMesh((root / "assets/npm/bunny/index.js").string());
         else if (spec == "npm:teapot") mesh = loadNpmMesh((root / "assets/npm/teapot/teapot.js").string());
         else if (spec.ends_with(".gltf") || spec.ends_with(".glb")) {
-          fs::path p = fs::path(spec).is_absolute() ? fs::path(spec) : dir / spec;
-          if (!fs::exists(p)) R.fail(key + ".mesh", "file not found: " + p.lexically_normal().string());
-          mesh = loadGltf(p.string());
+          mesh = loadGltf(R.existingPath(dir, spec, key + ".mesh"));
         } else {
           R.fail(key + ".mesh", "unknown mesh '" + spec + "' (expected sphere, plane, torus, npm:bunny, npm:teapot or a .gltf/.glb path)");
         }
