@@ -112,3 +112,58 @@ EnvKdTree buildEnvKdTree(const std::vector<double>& w, uint32_t width, uint32_t 
 }
 
 }  // namespace shadetwin
+
+namespace shadetwin {
+
+std::vector<uint32_t> blocksByMean(const EnvKdTree& t) {
+  std::vector<uint32_t> order(t.blocks.size());
+  for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return t.blocks[a].sum / t.blocks[a].texels() > t.blocks[b].sum / t.blocks[b].texels();
+  });
+  return order;
+}
+
+double fittedBlockProbability(double alpha, uint32_t n, uint32_t k) {
+  return std::log1p(1.0 / (alpha + k)) / std::log1p(n / alpha);
+}
+
+double blockFitL1(const std::vector<double>& e, double alpha) {
+  const uint32_t n = uint32_t(e.size());
+  const double norm = 1.0 / std::log1p(n / alpha);
+  double l1 = 0;
+  for (uint32_t k = 0; k < n; ++k) l1 += std::fabs(std::log1p(1.0 / (alpha + k)) * norm - e[k]);
+  return l1;
+}
+
+BlockFit fitBlockAlpha(const std::vector<double>& e) {
+  if (e.empty()) throw std::invalid_argument("kd-tree fit: no blocks");
+  const double lo = std::log(1e-6), hi = std::log(1e6 * double(e.size()));
+  auto f = [&](double s) { return blockFitL1(e, std::exp(s)); };
+  // The misfit need not be unimodal in alpha (the e_k are not monotone in rank): a scan first, so the
+  // local search starts in the basin of the global minimum at this resolution.
+  constexpr int kScan = 256;
+  int best = 0;
+  double bestF = f(lo);
+  for (int i = 1; i < kScan; ++i) {
+    const double v = f(lo + (hi - lo) * i / (kScan - 1));
+    if (v < bestF) bestF = v, best = i;
+  }
+  double a = lo + (hi - lo) * std::max(best - 1, 0) / (kScan - 1);
+  double b = lo + (hi - lo) * std::min(best + 1, kScan - 1) / (kScan - 1);
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double c = b - g * (b - a), d = a + g * (b - a), fc = f(c), fd = f(d);
+  for (int it = 0; it < 80 && b - a > 1e-12; ++it) {
+    if (fc <= fd) b = d, d = c, fd = fc, c = b - g * (b - a), fc = f(c);
+    else a = c, c = d, fc = fd, d = a + g * (b - a), fd = f(d);
+  }
+  BlockFit r;
+  const double s = fc <= fd ? c : d;
+  r.alpha = std::exp(s), r.l1 = std::min(fc, fd);
+  // The scan point itself may be better than the bracket's interior (a kink at the scan point).
+  const double sBest = lo + (hi - lo) * best / (kScan - 1);
+  if (bestF < r.l1) r.alpha = std::exp(sBest), r.l1 = bestF;
+  return r;
+}
+
+}  // namespace shadetwin

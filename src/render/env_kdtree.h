@@ -38,3 +38,38 @@ std::vector<double> envSamplingWeights(const float* rgba, uint32_t width, uint32
 EnvKdTree buildEnvKdTree(const std::vector<double>& w, uint32_t width, uint32_t height, uint32_t blocks);
 
 }  // namespace shadetwin
+
+namespace shadetwin {
+
+// ---- Block distribution (issue 5, item 2) ----
+// Blocks are ranked by mean weight (sum / texels), brightest first, and block rank k in [0, n) is
+// drawn from the one-parameter density over x in [0, n)
+//   p(x) = 1 / (log(1 + n/alpha) (alpha + x)),     (integral over [0, n) = 1 for every alpha > 0)
+// by inversion of its CDF F(x) = log(1 + x/alpha) / log(1 + n/alpha):  x = alpha ((1 + n/alpha)^xi - 1),
+// k = floor(x). Block k's probability is the integral of p over [k, k + 1):
+//   P_k(alpha) = log(1 + 1/(alpha + k)) / log(1 + n/alpha).
+// alpha -> infinity is the uniform choice; alpha -> 0 puts all mass on the brightest blocks. The
+// direction is a uniform point of the block in (u, v), so its solid-angle pdf is
+//   P_k W H / (texels_k 2 pi^2 sin theta)    (d omega = 2 pi^2 sin theta du dv).
+// alpha is fitted to the empirical probabilities e_k = sum_k / total (in rank order) by minimizing
+// the L1 misfit sum_k |P_k(alpha) - e_k|.
+
+/// Block indices ordered by mean weight, brightest first (ties: lower index first).
+std::vector<uint32_t> blocksByMean(const EnvKdTree& t);
+
+/// P_k(alpha) above, for block rank k of n (alpha > 0).
+double fittedBlockProbability(double alpha, uint32_t n, uint32_t k);
+
+/// sum_k |P_k(alpha) - e_k| over the n = e.size() ranks.
+double blockFitL1(const std::vector<double>& e, double alpha);
+
+struct BlockFit {
+  double alpha = 1;
+  double l1 = 0;  // misfit at alpha
+};
+
+/// alpha minimizing blockFitL1 over [1e-6, 1e6 n]: a scan of 256 log-spaced points, then golden-
+/// section search (in log alpha) in the bracket around the best point. e.size() >= 1.
+BlockFit fitBlockAlpha(const std::vector<double>& e);
+
+}  // namespace shadetwin
