@@ -14,3 +14,6 @@
 #include "shade/sh_irradiance.h"
 #include "shade/shade_fis.h"
 #include "shade/shade_env.h"
+#include "shade/philox.h"
+#include "shade/env_sampling.h"
+#include "shade/shade_env_mis.h"
