@@ -33,7 +33,8 @@ emu::Texture envTexture(uint32_t W, uint32_t H, const std::vector<float>& rgba) 
   return emu::Texture(emu::Format::RGBA32F, W, H, 1, std::move(levels));
 }
 
-// A 64 x 32 map: log-normal noise, a bright 2 x 2 spot, a row of negative texels.
+// A 64 x 32 map: log-normal noise, a bright 2 x 2 spot, a band of 3 rows of negative texels (the
+// middle row has no positive neighbour: weight 0).
 emu::Texture syntheticEnv(uint32_t W = 64, uint32_t H = 32) {
   std::mt19937 rng(11);
   std::normal_distribution<float> N(0.0f, 1.5f);
@@ -43,7 +44,7 @@ emu::Texture syntheticEnv(uint32_t W = 64, uint32_t H = 32) {
       float* p = &t[4 * (size_t(y) * W + x)];
       const float v = std::exp(N(rng));
       p[0] = v, p[1] = v * 0.8f, p[2] = v * 1.1f;
-      if (y == H / 4) p[0] = p[1] = p[2] = -0.5f;  // negative texels (real in the CC0 maps)
+      if (y + 1 >= H / 4 && y <= H / 4 + 1) p[0] = p[1] = p[2] = -0.5f;  // negative texels (real in the CC0 maps)
       if ((x == W / 3 || x == W / 3 + 1) && (y == H / 2 || y == H / 2 + 1)) p[0] = p[1] = p[2] = 3000.0f;
     }
   return envTexture(W, H, t);
@@ -133,7 +134,10 @@ TEST(EnvSampling, SamplesPassChiSquareAgainstThePromisedProbabilities) {
     const Bound b = bind(env, m, 64);
     const auto p = promisedTexelProbabilities(env, m, 64, m == sc::kEnvKdTree);
     int dof = 0;
-    const double pv = chiSquarePValue(p, histogram(b, n, 5), n, &dof);
+    const auto h = histogram(b, n, 5);
+    const double pv = chiSquarePValue(p, h, n, &dof);
+    if (m == sc::kEnvInversion)  // the middle negative row has weight 0: never drawn
+      for (uint32_t x = 0; x < 64; ++x) EXPECT_EQ(h[8 * 64 + x], 0.0) << x;
     EXPECT_GT(pv, 1e-3) << "method " << m << " dof " << dof;
     EXPECT_GT(dof, 40) << m;
   }
@@ -232,11 +236,15 @@ TEST(EnvSampling, SingleBrightPixelAndOneBlock) {
   const int n = 20000;
   for (uint32_t m : kMethods) {
     const Bound b = bind(env, m, 64);
-    const double hit = histogram(b, n, 4)[10 * 64 + 40] / n;
-    // The pixel holds 99.3% of the weight; the alias table and inversion draw it that often; the
-    // kd-tree's fitted P_0 is what its fit gives the brightest block (a block of its own).
+    const auto h = histogram(b, n, 4);
+    // Weights are the 3 x 3 neighbourhood maxima (render/env_kdtree.h): the pixel and its 8 neighbours
+    // hold 99.9% of the weight; the alias table and inversion draw them that often, the kd-tree as
+    // often as its fitted distribution gives their blocks.
     const auto p = promisedTexelProbabilities(env, m, 64, m == sc::kEnvKdTree);
-    EXPECT_NEAR(hit, p[10 * 64 + 40], 4 * std::sqrt(p[10 * 64 + 40] * (1 - p[10 * 64 + 40]) / n) + 1e-4) << m;
+    double hit = 0, promised = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) hit += h[size_t(10 + dy) * 64 + size_t(40 + dx)] / n, promised += p[size_t(10 + dy) * 64 + size_t(40 + dx)];
+    EXPECT_NEAR(hit, promised, 4 * std::sqrt(promised * (1 - promised) / n) + 1e-4) << m;
     if (m != sc::kEnvKdTree) {
       EXPECT_GT(hit, 0.99) << m;
     }
@@ -256,14 +264,15 @@ TEST(EnvSampling, CitySunAndNegativeTexels) {
     const Bound b = bind(env, method, 6144);
     EXPECT_NEAR(pdfIntegral(b, 1), 1.0, 2e-3) << method;
     const auto p = promisedTexelProbabilities(env, method, 6144, method == sc::kEnvKdTree);
-    // Inversion never draws a texel of negative luminance; the block samplers draw one only as part of
-    // a block with positive mass, uniformly (the chi-square test below checks that rate).
+    // Inversion never draws a texel of zero weight (negative or zero luminance in its whole 3 x 3
+    // neighbourhood); the block samplers draw one only as part of a block with positive mass,
+    // uniformly (the chi-square test below checks that rate).
     const auto h = histogram(b, 200000, 12);
-    double negHits = 0;
-    const float* t = m.levels[0].data();
+    const auto w = shadetwin::envSamplingWeights(m.levels[0].data(), m.width, m.height);
+    double zeroHits = 0;
     for (size_t i = 0; i < h.size(); ++i)
-      if (0.2126f * t[4 * i] + 0.7152f * t[4 * i + 1] + 0.0722f * t[4 * i + 2] < 0 && method == sc::kEnvInversion) negHits += h[i];
-    EXPECT_EQ(negHits, 0.0) << method;
+      if (w[i] == 0 && method == sc::kEnvInversion) zeroHits += h[i];
+    EXPECT_EQ(zeroHits, 0.0) << method;
     int dof = 0;
     EXPECT_GT(chiSquarePValue(p, h, 200000, &dof), 1e-3) << method << " dof " << dof;
   }

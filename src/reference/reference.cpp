@@ -17,6 +17,7 @@
 
 #include "image_io.h"
 #include "reference/reference_brdf.h"
+#include "render/env_kdtree.h"
 #include "render/material.h"
 #include "render/gbuffer.h"
 #include "render/render.h"
@@ -51,22 +52,15 @@ class Environment {
   Environment(const EnvImage& img, double intensity) : img_(img), intensity_(intensity) {
     const uint32_t W = img.width, H = img.height;
     if (!W || !H || !img.rgba) throw std::invalid_argument("reference: empty environment image");
-    // Texel weights: luminance (negative texels count as 0) x sin(theta) of the row centre, plus a
-    // floor of 1e-4 of the mean so every direction keeps a positive pdf (the radiance is bilinear,
-    // so a zero texel can border a bright one).
+    // Texel weights: render/env_kdtree.h's envSamplingWeights (the largest non-negative luminance of
+    // the texel's 3 x 3 neighbourhood, times sin(theta) of the row centre: the pdf then bounds the
+    // bilinear radiance, no fireflies next to the sun), plus a floor of 1e-4 of the mean so every
+    // direction keeps a positive pdf.
     cdfRow_.resize(H + 1);
     cdfCol_.resize(size_t(H) * (W + 1));
-    std::vector<double> w(size_t(W) * H);
+    const std::vector<double> w = envSamplingWeights(img.rgba, W, H);
     double total = 0;
-    for (uint32_t y = 0; y < H; ++y) {
-      const double s = std::sin(kPi * (y + 0.5) / H);
-      for (uint32_t x = 0; x < W; ++x) {
-        const float* t = img.rgba + 4 * (size_t(y) * W + x);
-        const double lum = std::max(0.0, 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]);
-        w[size_t(y) * W + x] = std::isfinite(lum) ? lum * s : 0.0;
-        total += w[size_t(y) * W + x];
-      }
-    }
+    for (double v : w) total += v;
     const double floor = total > 0 ? 1e-4 * total / (double(W) * H) : 1.0;
     cdfRow_[0] = 0;
     for (uint32_t y = 0; y < H; ++y) {

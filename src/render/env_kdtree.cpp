@@ -9,13 +9,27 @@
 namespace shadetwin {
 
 std::vector<double> envSamplingWeights(const float* rgba, uint32_t width, uint32_t height) {
-  std::vector<double> w(size_t(width) * height);
+  std::vector<double> lum(size_t(width) * height);
+  for (size_t i = 0; i < lum.size(); ++i) {
+    const float* t = rgba + 4 * i;
+    const double l = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+    lum[i] = std::isfinite(l) && l > 0 ? l : 0.0;
+  }
+  // Max over the 3 x 3 neighbourhood (wrap in u, clamp in v): the texels a bilinear lookup inside
+  // this texel can blend.
+  std::vector<double> w(lum.size());
   for (uint32_t y = 0; y < height; ++y) {
     const double s = std::sin((y + 0.5) * std::numbers::pi / height);
     for (uint32_t x = 0; x < width; ++x) {
-      const float* t = rgba + 4 * (size_t(y) * width + x);
-      const double lum = 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
-      w[size_t(y) * width + x] = std::isfinite(lum) && lum > 0 ? lum * s : 0.0;
+      double m = 0;
+      for (int dy = -1; dy <= 1; ++dy) {
+        const uint32_t yy = uint32_t(std::clamp(int(y) + dy, 0, int(height) - 1));
+        for (int dx = -1; dx <= 1; ++dx) {
+          const uint32_t xx = uint32_t((int(x) + dx + int(width)) % int(width));
+          m = std::max(m, lum[size_t(yy) * width + xx]);
+        }
+      }
+      w[size_t(y) * width + x] = m * s;
     }
   }
   return w;

@@ -267,11 +267,30 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
                                p.eye, p.ray, m.diffuse, m.specular, m.brdf);
   });
 }
+// Techniques *-mis: shade_env_mis.comp's shadeEnvMis over the environment and its sampler's tables.
+void shadeMisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                 std::vector<float>& out) {
+  const shade::Sampler2D env = environmentSampler(*in.environment, dev, true);
+  const shade::Sampler2D table = environmentSampler(*in.envTables->table, dev, false);
+  const shade::Sampler2D texels = environmentSampler(*in.envTables->texels, dev, false);
+  const EnvSamplingUniforms& u = in.envTables->uniforms;
+  const shade::x8::EnvSampling es{u.method, u.count, u.width, u.height, u.alpha, u.log2Span, u.invWidth, u.invHeight};
+  const shade::x8::MisSettings ms{scene.misHeuristic, scene.misSamples, scene.misFrame, scene.misSeed};
+  const F8 intensity(scene.environmentIntensity);
+  const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);
+  const std::vector<MaterialGpu> mats = materialRecords(scene, true);
+  shadePixelBlocks(scene, g, dev, 4, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
+    const auto m = surface(p, mats, maps);
+    return shade::x8::shadeEnvMis(env, table, texels, es, ms, intensity, p.pixel, p.g0, p.g1, p.g2, p.eye, p.ray, m.diffuse,
+                                  m.specular, m.brdf);
+  });
+}
 }  // namespace
 
 void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
               std::vector<float>& out) {
   if (usesFisPass(scene.technique)) return shadeFisEmu(scene, g, in, dev, out);
+  if (usesMisPass(scene.technique)) return shadeMisEmu(scene, g, in, dev, out);
   if (scene.technique == "env") return shadeEnvEmu(scene, g, in, dev, out);
   const emu::Texture& env = *in.environment;
   const shade::Sampler2D envS = environmentSampler(env, dev, true);

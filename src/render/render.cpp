@@ -123,7 +123,13 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   std::unique_ptr<GbufferPassVk> gpass;
   std::unique_ptr<ShadePassVk> spass;
   GBuffer g;
+  // MIS techniques draw new random numbers every frame (Philox key word 1 = the frame) and average
+  // progressively: frame f writes the mean of the frames since the environment last changed.
+  const bool progressive = usesMisPass(scene.technique);
+  std::vector<double> accum;
+  uint32_t accumFrames = 0;
   for (uint32_t f = 0; f < opts.frames; ++f) {
+    scene.misFrame = f;
     std::ostringstream passes;
     passes << std::fixed << std::setprecision(1);
     const double degrees = opts.envRotate * f;
@@ -152,12 +158,20 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       } else if (!cache.lastRebuilt()) {
         passes << "  technique inputs                -     (environment unchanged: reused)\n";
       }
+      if (in.envTables && cache.lastRebuilt()) {
+        const EnvSamplingTables& T = *in.envTables;
+        passes << "  sampler tables (host)    " << std::setw(8) << T.buildMs << " ms  (" << scene.technique;
+        if (T.blocks) passes << ": " << T.blocks << " blocks, alpha " << std::setprecision(4) << T.fit.alpha << ", L1 misfit " << T.fit.l1
+                             << std::setprecision(1);
+        passes << ")\n";
+      }
       if (f == 0)
         passes << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
                << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
                << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
       passes << "  shading (emu, " << scene.technique;
-      if (scene.technique != "mirror") passes << ", " << scene.fisSamples << " samples";
+      if (progressive) passes << ", " << scene.misSamples << " sample pairs, frame " << f;
+      else if (scene.technique != "mirror") passes << ", " << scene.fisSamples << " samples";
       passes << ")    " << std::setw(8) << tShade << " ms\n";
     } else {
       t0 = Clock::now();
@@ -178,6 +192,15 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     // Passes the technique does not use are not run.
     passes << "  shadow maps              " << std::setw(8) << "-" << "     (not run: technique " << scene.technique
            << " uses no visibility)\n";
+    if (progressive) {
+      if (f == 0 || cache.lastRebuilt() || rotated.texture) accum.assign(image.size(), 0.0), accumFrames = 0;
+      ++accumFrames;
+      for (size_t i = 0; i < image.size(); ++i) {
+        accum[i] += image[i];
+        image[i] = float(accum[i] / accumFrames);
+      }
+      if (opts.frames > 1) passes << "  progressive mean of " << accumFrames << " frame(s)\n";
+    }
     const std::string exr = frameOut(out, opts.frames, f);
     const std::string png = std::filesystem::path(exr).replace_extension(".png").string();
     t0 = Clock::now();

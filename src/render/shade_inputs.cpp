@@ -15,6 +15,8 @@ ShadeInputs shadeInputsEmu(const Scene& scene, const emu::Texture& env, const em
     in.shMs = timeMs([&] { in.sh = shIrradianceEmu(env, dev); });
   }
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
+  if (usesMisPass(scene.technique))
+    in.envTables = std::make_shared<EnvSamplingTables>(envSamplingTables(env, envMethodOf(scene.technique), scene.envBlocks));
   if (scene.technique != "mirror") in.maps = std::make_shared<emu::Texture>(materialMapsEmu(loadMaterialMaps(scene)));
   return in;
 }
@@ -27,6 +29,8 @@ ShadeInputs shadeInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::T
     in.shMs = timeMs([&] { in.sh = shIrradianceVulkan(ctx, env); });
   }
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
+  if (usesMisPass(scene.technique))
+    in.envTables = std::make_shared<EnvSamplingTables>(envSamplingTables(env, envMethodOf(scene.technique), scene.envBlocks));
   if (scene.technique != "mirror") in.maps = std::make_shared<emu::Texture>(materialMapsVulkan(ctx, loadMaterialMaps(scene)));
   return in;
 }
@@ -37,7 +41,7 @@ uint64_t shadeInputsKey(const Scene& scene, const emu::Texture& env) {
     const auto* b = static_cast<const uint8_t*>(data);
     for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
   };
-  const uint32_t dims[5] = {env.width(), env.height(), uint32_t(env.format()), scene.fisFaceSize, scene.fisSamples};
+  const uint32_t dims[6] = {env.width(), env.height(), uint32_t(env.format()), scene.fisFaceSize, scene.fisSamples, scene.envBlocks};
   mix(dims, sizeof dims);
   mix(env.levels()[0].data(), env.levels()[0].size());
   mix(scene.technique.data(), scene.technique.size());

@@ -1,7 +1,8 @@
 // What a technique's shading pass reads besides the G-buffer, built from the environment by one
 // build (emulator or Vulkan device): mirror reads the equirectangular map itself; fis reads the
 // dual-paraboloid atlas (render/paraboloid.h) and the SH irradiance (render/sh_irradiance.h); env
-// reads the equirectangular map (background) and its light list (render/env_lights.h).
+// reads the equirectangular map (background) and its light list (render/env_lights.h); the MIS
+// techniques read the map and their sampler's tables (render/env_sampling.h).
 // A technique's inputs are built only when it needs them.
 #pragma once
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "emu/device_profile.h"
 #include "emu/texture.h"
 #include "render/env_lights.h"
+#include "render/env_sampling.h"
 #include "render/sh_irradiance.h"
 #include "scene/scene.h"
 
@@ -21,6 +23,7 @@ struct ShadeInputs {
   std::shared_ptr<const emu::Texture> atlas;  // fis: dual-paraboloid atlas with its MIP chain
   ShIrradiance sh;                            // fis: E/pi coefficients
   EnvLights lights;                           // env: directional lights (host-sampled, the same for both builds)
+  std::shared_ptr<const EnvSamplingTables> envTables;  // *-mis: the environment sampler's tables (host-built)
   std::shared_ptr<const emu::Texture> maps;   // fis, env: material maps (render/material.h), a 1x1 white layer if none
   double atlasMs = 0, shMs = 0;               // build times (0 when not built)
   /// The texture the shading kernel samples: the atlas for fis, else the environment.

@@ -14,6 +14,7 @@ namespace {
 #include "shade_mirror_comp.inc"
 #include "shade_fis_comp.inc"
 #include "shade_env_comp.inc"
+#include "shade_env_mis_comp.inc"
 
 // One push block for both kernels: shade_mirror.comp declares the first 96 bytes (its last uint is
 // padding), shade_fis.comp all 112.
@@ -30,7 +31,8 @@ static_assert(sizeof(ShadePush) == 112, "ShadePush must match the push block of 
 // records (render/material.h, 32-byte stride) and the equirectangular map; fis all 112 bytes, binding
 // 4 = SH coefficients and 5 = material maps, the atlas (clamped in u); env 96 bytes (sampleCount =
 // light count), binding 4 = lights and 5 = material maps, the equirectangular map. fis and env read
-// whole 128-byte material records and G0..G3 (64 bytes per pixel), mirror G0, G1.
+// whole 128-byte material records and G0..G3 (64 bytes per pixel), mirror G0, G1. The MIS kernel:
+// 96 bytes, binding 4 = MisSettingsGpu, 5 = material maps, 6 and 7 = the sampler's tables.
 struct KernelInfo {
   std::span<const uint32_t> spirv;
   uint32_t bindings;
@@ -40,6 +42,7 @@ struct KernelInfo {
 KernelInfo kernelInfo(const std::string& technique) {
   if (usesFisPass(technique)) return {kSpv_shade_fis_comp, 6, sizeof(ShadePush), true, false};
   if (technique == "env") return {kSpv_shade_env_comp, 6, offsetof(ShadePush, levelConstant), true, true};
+  if (usesMisPass(technique)) return {kSpv_shade_env_mis_comp, 8, offsetof(ShadePush, levelConstant), true, true};
   return {kSpv_shade_mirror_comp, 4, offsetof(ShadePush, levelConstant), false, true};
 }
 
@@ -47,6 +50,27 @@ VkSamplerCreateInfo materialMapSamplerInfo() {
   VkSamplerCreateInfo si = environmentSamplerInfo(true);
   si.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
   return si;
+}
+
+// Binding 4 of shade_env_mis.comp: shade/env_sampling.h EnvSampling, then shade/shade_env_mis.h MisSettings.
+struct MisSettingsGpu {
+  EnvSamplingUniforms sampling;
+  uint32_t heuristic, sampleCount, frame, seed;
+};
+static_assert(sizeof(MisSettingsGpu) == 48, "MisSettingsGpu must match the Settings block of shade_env_mis.comp");
+
+VkSamplerCreateInfo tableSamplerInfo() {  // texelFetch only; nearest keeps R32F valid without linear-filter support
+  VkSamplerCreateInfo si = environmentSamplerInfo(false);
+  si.magFilter = si.minFilter = VK_FILTER_NEAREST;
+  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  return si;
+}
+
+std::unique_ptr<vk::Image> tableImage(vk::Context& c, const emu::Texture* t) {
+  if (!t) return nullptr;
+  const bool r32 = t->format() == emu::Format::R32F;
+  return std::make_unique<vk::Image>(c, r32 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, t->width(), t->height(), 1,
+                                     t->levels(), r32 ? 4 : 16, VK_IMAGE_VIEW_TYPE_2D);
 }
 
 const emu::Texture& whiteTexture() {
@@ -68,10 +92,14 @@ struct ShadePassVk::Impl {
   vk::Buffer extra;  // binding 4: fis, 9 vec4 of E/pi coefficients; env, the lights
   vk::Image maps;    // binding 5 (fis, env): material maps
   vk::Sampler mapSampler;
+  std::unique_ptr<vk::Image> table, texels;  // *-mis: the environment sampler's tables (bindings 6, 7)
+  vk::Sampler tableSampler;
   std::unique_ptr<vk::Buffer> gbuf, out;
-  static constexpr VkDescriptorType kLayout[6] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+  static constexpr VkDescriptorType kLayout[8] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  const EnvSamplingTables* envTables;
   KernelInfo info;
   bool fis;
   uint32_t lightCount;
@@ -90,7 +118,10 @@ struct ShadePassVk::Impl {
         envMaxLod(float(tex.levelCount() - 1)), extra(c, std::max<size_t>(9 * 16, in.lights.data.size() * 4)),
         maps(c, VK_FORMAT_R32G32B32A32_SFLOAT, mapTex.width(), mapTex.height(), mapTex.layers(), mapTex.levels(), 16,
              VK_IMAGE_VIEW_TYPE_2D_ARRAY),
-        mapSampler(c, materialMapSamplerInfo()), info(ki),
+        mapSampler(c, materialMapSamplerInfo()),
+        table(tableImage(c, in.envTables ? in.envTables->table.get() : nullptr)),
+        texels(tableImage(c, in.envTables ? in.envTables->texels.get() : nullptr)), tableSampler(c, tableSamplerInfo()),
+        envTables(in.envTables.get()), info(ki),
         fis(usesFisPass(s.technique)), lightCount(in.lights.count) {
     if (fis)
       for (int k = 0; k < 9; ++k) {
@@ -122,12 +153,21 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
   float* dst = m.gbuf->as<float>();
   for (size_t p = 0; p < n; ++p) std::memcpy(dst + stride / 4 * p, g.texels.data() + p * kGbufFloats, stride);
   const CameraRays cam = cameraRays(m.scene);
-  const vk::Binding b[6] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
+  const vk::Binding b[8] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.gbuf->handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.materials.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.out->handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.extra.handle()},
-                            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.maps.view(), m.mapSampler.handle()}};
+                            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.maps.view(), m.mapSampler.handle()},
+                            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.table ? m.table->view() : VK_NULL_HANDLE,
+                             m.tableSampler.handle()},
+                            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.texels ? m.texels->view() : VK_NULL_HANDLE,
+                             m.tableSampler.handle()}};
+  if (m.info.bindings == 8) {  // the MIS kernel: its settings, the frame's included, in binding 4
+    if (!m.envTables) throw vk::Error("shading pass: technique " + m.scene.technique + " needs its environment sampler's tables");
+    const MisSettingsGpu st{m.envTables->uniforms, m.scene.misHeuristic, m.scene.misSamples, m.scene.misFrame, m.scene.misSeed};
+    std::memcpy(m.extra.data(), &st, sizeof st);
+  }
   ShadePush push{};
   std::memcpy(push.eye, cam.eye, 12);
   std::memcpy(push.fwd, cam.fwd, 12);

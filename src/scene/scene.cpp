@@ -185,7 +185,7 @@ Scene loadScene(const std::string& path) {
     throw SceneError(path + ": not valid JSON: " + e.what());
   }
   Reader R{path};
-  R.keys(j, "", {"image", "camera", "environment", "technique", "fis", "materials", "objects", "description"});
+  R.keys(j, "", {"image", "camera", "environment", "technique", "fis", "mis", "materials", "objects", "description"});
   const fs::path dir = fs::path(path).parent_path();
   const fs::path root = fs::weakly_canonical(dir / "..");
   Scene s;
@@ -221,7 +221,8 @@ Scene loadScene(const std::string& path) {
   }
   s.technique = R.string(j, "technique", "fis");
   if (!isTechnique(s.technique))
-    R.fail("technique", "unknown technique '" + s.technique + "' (expected: fis, unfiltered, stochastic, env or mirror)");
+    R.fail("technique", "unknown technique '" + s.technique +
+                           "' (expected: fis, unfiltered, stochastic, env, mirror, kdtree-mis, alias-mis or inversion-mis)");
   if (j.contains("fis")) {
     const json& f = j["fis"];
     if (!f.is_object()) R.fail("fis", "expected an object with samples, k, face_size");
@@ -230,6 +231,19 @@ Scene loadScene(const std::string& path) {
     s.fisK = R.number(f, "fis.k", 4, 1e-3f, 1e6f);
     s.fisFaceSize = uint32_t(R.number(f, "fis.face_size", 256, 4, 8192));
     s.fisLevelBias = R.number(f, "fis.level_bias", 0, 0, 16);
+  }
+  if (j.contains("mis")) {
+    const json& f = j["mis"];
+    if (!f.is_object()) R.fail("mis", "expected an object with samples, heuristic, blocks, seed");
+    R.keys(f, "mis", {"samples", "heuristic", "blocks", "seed"});
+    s.misSamples = uint32_t(R.number(f, "mis.samples", 16, 1, 4096));
+    s.envBlocks = uint32_t(R.number(f, "mis.blocks", 6144, 1, 1 << 20));
+    s.misSeed = uint32_t(R.number(f, "mis.seed", 0, 0, 16777216));
+    const std::string h = R.string(f, "mis.heuristic", "power");
+    bool found = false;
+    for (uint32_t i = 0; i < std::size(kMisHeuristics); ++i)
+      if (h == kMisHeuristics[i]) s.misHeuristic = i, found = true;
+    if (!found) R.fail("mis.heuristic", "unknown heuristic '" + h + "' (expected balance, power, env-only or brdf-only)");
   }
 
   std::map<std::string, uint32_t> matIndex;

@@ -65,14 +65,19 @@ struct CameraBasis {
 /// Shading techniques: "fis" (filtered importance sampling, issue 4), its baselines "unfiltered"
 /// (the same samples at level 0) and "stochastic" (per-pixel rotated samples at level 0), and
 /// "env" (environment importance sampling as directional lights), and "mirror" (the simple lookup
-/// pass of issue 3). The first three run the FIS pass (shade/shade_fis.h).
-inline constexpr const char* kTechniques[] = {"fis", "unfiltered", "stochastic", "env", "mirror"};
+/// pass of issue 3). The first three run the FIS pass (shade/shade_fis.h). "kdtree-mis",
+/// "alias-mis" and "inversion-mis" (issue 5) run the MIS pass (shade/shade_env_mis.h) with the
+/// environment sampled by the kd-tree's fitted block distribution, an alias table over the same
+/// blocks, or the inversion method.
+inline constexpr const char* kTechniques[] = {"fis", "unfiltered", "stochastic", "env", "mirror", "kdtree-mis", "alias-mis", "inversion-mis"};
 inline bool isTechnique(const std::string& t) {
   for (const char* k : kTechniques)
     if (t == k) return true;
   return false;
 }
 inline bool usesFisPass(const std::string& t) { return t == "fis" || t == "unfiltered" || t == "stochastic"; }
+inline bool usesMisPass(const std::string& t) { return t == "kdtree-mis" || t == "alias-mis" || t == "inversion-mis"; }
+inline constexpr const char* kMisHeuristics[] = {"balance", "power", "env-only", "brdf-only"};  // shade_env_mis.h kMis*
 
 struct Scene {
   std::string path;  // the scene file
@@ -87,6 +92,14 @@ struct Scene {
   float fisK = 4.0f;
   float fisLevelBias = 0.0f;  // added after the max: 1 = the book chapter's form (with k = 1)
   uint32_t fisFaceSize = 256;
+  // MIS techniques ("mis" block): sample pairs (one environment + one BRDF sample) per pixel and
+  // frame, the heuristic (index into kMisHeuristics), kd-tree blocks, the Philox seed; misFrame is the
+  // frame the pass draws random numbers for (set per frame by render --frames, 0 otherwise).
+  uint32_t misSamples = 16;
+  uint32_t misHeuristic = 1;  // power
+  uint32_t envBlocks = 6144;
+  uint32_t misSeed = 0;
+  uint32_t misFrame = 0;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Object> objects;
