@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
   render->add_option("--frames", ro.frames, "frames to render (OUT_0000.exr, ...); technique inputs are rebuilt only when the environment changes")
       ->check(CLI::Range(1, 100000));
   render->add_option("--env-rotate", ro.envRotate, "degrees the environment turns about +y per frame (whole texel columns)");
+  render->add_option("--blocks", ro.blocks, "kd-tree blocks of kdtree-mis / alias-mis (default: the scene's mis.blocks, 6144)")
+      ->check(CLI::Range(1, 1 << 20));
   shadetwin::ReferenceCommandOptions refo;
   auto* ref = app.add_subcommand("reference", "ground truth: Embree + TBB Monte Carlo with MIS, written as EXR + PNG");
   ref->add_option("scene", refo.scene, "scene file (JSON, see README)");
@@ -89,7 +91,9 @@ int main(int argc, char** argv) {
   shadetwin::SweepOptions so;
   auto* sweep = app.add_subcommand("sweep", "speed against error: techniques x sample counts vs the reference; CSV + plots");
   sweep->add_option("--scene", so.scene, "scene file");
-  sweep->add_option("--technique", so.techniques, "comma-separated: fis, unfiltered, stochastic, env");
+  sweep->add_option("--technique", so.techniques, "comma-separated: fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis");
+  sweep->add_option("--blocks", so.blocks, "kd-tree blocks of the *-mis techniques (default: the scene's)")->check(CLI::Range(1, 1 << 20));
+  sweep->add_option("--maps", so.maps, "with a *-mis technique: environment maps (assets/hdri/NAME.exr) of the sampler study");
   sweep->add_option("--samples", so.samples, "comma-separated sample counts");
   sweep->add_option("--reference", so.reference, "reference EXR (default: render it)");
   sweep->add_option("--reference-spp", so.referenceSpp, "samples per pixel of the rendered reference")->check(CLI::Range(1, 1 << 20));

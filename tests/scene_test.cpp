@@ -82,6 +82,29 @@ TEST(Scene, ErrorsNameFileKeyAndExpectation) {
   EXPECT_NE(errorOf(src("scenes/missing.json")).find("cannot open scene file"), std::string::npos);
 }
 
+TEST(Scene, MisBlock) {
+  const shadetwin::Scene w = shadetwin::loadScene(src("scenes/ward_spheres.json"));
+  EXPECT_EQ(w.technique, "kdtree-mis");
+  EXPECT_EQ(w.misSamples, 16u);
+  EXPECT_EQ(w.misHeuristic, 1u);  // power
+  EXPECT_EQ(w.envBlocks, 6144u);
+  EXPECT_EQ(w.misSeed, 1u);
+  const std::string ok = R"("camera": {"eye": [0, 0, 3], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/forest.exr"}, "objects": [{"mesh": "sphere"}])";
+  std::string p = writeTemp("mis1.json", "{" + ok + R"(, "technique": "alias-mis", "mis": {"heuristic": "balance", "blocks": 64, "samples": 3}})");
+  const shadetwin::Scene s = shadetwin::loadScene(p);
+  EXPECT_EQ(s.misHeuristic, 0u);
+  EXPECT_EQ(s.envBlocks, 64u);
+  EXPECT_EQ(s.misSamples, 3u);
+  p = writeTemp("mis2.json", "{" + ok + R"(, "mis": {"heuristic": "max"}})");
+  EXPECT_NE(errorOf(p).find("mis.heuristic: unknown heuristic 'max'"), std::string::npos) << errorOf(p);
+  p = writeTemp("mis3.json", "{" + ok + R"(, "mis": {"blocks": 0}})");
+  EXPECT_NE(errorOf(p).find("mis.blocks"), std::string::npos) << errorOf(p);
+  p = writeTemp("mis4.json", "{" + ok + R"(, "mis": {"sample": 4}})");
+  EXPECT_NE(errorOf(p).find("mis.sample: unknown key"), std::string::npos) << errorOf(p);
+  p = writeTemp("mis5.json", "{" + ok + R"(, "technique": "kd-tree"})");
+  EXPECT_NE(errorOf(p).find("kdtree-mis"), std::string::npos) << errorOf(p);  // the message lists the techniques
+}
+
 TEST(Scene, LafortuneLobesAndMaterialMaps) {
   const std::string head = R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/forest.exr"}, "objects": [{"mesh": "sphere", "material": "m"}], "materials": [)";
   auto scene = [&](const std::string& name, const std::string& material) { return writeTemp(name, head + material + "]}"); };

@@ -58,6 +58,10 @@ class ShadowPassVk {
 /// Sampler state of an environment texture, the same as the emulator's: trilinear, clamp in v,
 /// repeat (equirectangular map) or clamp (paraboloid atlas) in u.
 VkSamplerCreateInfo environmentSamplerInfo(bool repeatU);
+/// A table the shaders read with texelFetch (render/env_sampling.h): an R32F or RGBA32F texture as a
+/// one-level 2D image, and its sampler (nearest: no filtering is involved).
+std::unique_ptr<vk::Image> dataTextureImage(vk::Context& ctx, const emu::Texture& t);
+VkSamplerCreateInfo dataTextureSamplerInfo();
 
 class ShadePassVk {
  public:

@@ -98,6 +98,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   Scene scene = loadScene(opts.scene);
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
+  if (opts.blocks) scene.envBlocks = opts.blocks;
   const double tScene = msSince(t0);
   if (opts.device != "emu" && opts.device != "vulkan") throw std::invalid_argument("--device " + opts.device + ": expected emu or vulkan");
   if (opts.frames == 0) throw std::invalid_argument("--frames: expected at least 1");

@@ -20,6 +20,7 @@ struct RenderOptions {
   std::string profile = "lavapipe";  // device profile the emulator follows
   uint32_t frames = 1;               // frames to render (OUT_NNNN.exr when more than one)
   double envRotate = 0;              // degrees the environment turns about +y per frame
+  uint32_t blocks = 0;               // kd-tree blocks of the *-mis techniques (0: the scene's mis.blocks)
 };
 
 /// The environment map as both builds sample it: RGBA32F with its full MIP chain from the shared kernel.

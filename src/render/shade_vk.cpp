@@ -59,20 +59,6 @@ struct MisSettingsGpu {
 };
 static_assert(sizeof(MisSettingsGpu) == 48, "MisSettingsGpu must match the Settings block of shade_env_mis.comp");
 
-VkSamplerCreateInfo tableSamplerInfo() {  // texelFetch only; nearest keeps R32F valid without linear-filter support
-  VkSamplerCreateInfo si = environmentSamplerInfo(false);
-  si.magFilter = si.minFilter = VK_FILTER_NEAREST;
-  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  return si;
-}
-
-std::unique_ptr<vk::Image> tableImage(vk::Context& c, const emu::Texture* t) {
-  if (!t) return nullptr;
-  const bool r32 = t->format() == emu::Format::R32F;
-  return std::make_unique<vk::Image>(c, r32 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, t->width(), t->height(), 1,
-                                     t->levels(), r32 ? 4 : 16, VK_IMAGE_VIEW_TYPE_2D);
-}
-
 const emu::Texture& whiteTexture() {
   static const emu::Texture t = materialMapsEmu(MaterialMapImages{});
   return t;
@@ -119,8 +105,8 @@ struct ShadePassVk::Impl {
         maps(c, VK_FORMAT_R32G32B32A32_SFLOAT, mapTex.width(), mapTex.height(), mapTex.layers(), mapTex.levels(), 16,
              VK_IMAGE_VIEW_TYPE_2D_ARRAY),
         mapSampler(c, materialMapSamplerInfo()),
-        table(tableImage(c, in.envTables ? in.envTables->table.get() : nullptr)),
-        texels(tableImage(c, in.envTables ? in.envTables->texels.get() : nullptr)), tableSampler(c, tableSamplerInfo()),
+        table(in.envTables ? dataTextureImage(c, *in.envTables->table) : nullptr),
+        texels(in.envTables ? dataTextureImage(c, *in.envTables->texels) : nullptr), tableSampler(c, dataTextureSamplerInfo()),
         envTables(in.envTables.get()), info(ki),
         fis(usesFisPass(s.technique)), lightCount(in.lights.count) {
     if (fis)
@@ -194,6 +180,20 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
   std::vector<float> out(4 * n);
   std::memcpy(out.data(), m.out->data(), out.size() * 4);
   return out;
+}
+
+VkSamplerCreateInfo dataTextureSamplerInfo() {
+  VkSamplerCreateInfo si = environmentSamplerInfo(false);
+  si.magFilter = si.minFilter = VK_FILTER_NEAREST;  // texelFetch only; R32F needs no linear-filter support
+  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  return si;
+}
+
+std::unique_ptr<vk::Image> dataTextureImage(vk::Context& c, const emu::Texture& t) {
+  const bool r32 = t.format() == emu::Format::R32F;
+  if (!r32 && t.format() != emu::Format::RGBA32F) throw vk::Error("data texture: expected R32F or RGBA32F");
+  return std::make_unique<vk::Image>(c, r32 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, t.width(), t.height(), 1,
+                                     t.levels(), r32 ? 4 : 16, VK_IMAGE_VIEW_TYPE_2D);
 }
 
 VkSamplerCreateInfo environmentSamplerInfo(bool repeatU) {

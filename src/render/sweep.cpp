@@ -17,6 +17,8 @@
 #include "compare.h"
 #include "image_io.h"
 #include "reference/reference.h"
+#include "render/env_sampling.h"
+#include "render/env_sampling_speed.h"
 #include "render/gbuffer.h"
 #include "render/passes_vk.h"
 #include "render/render.h"
@@ -36,12 +38,73 @@ std::vector<std::string> splitList(const std::string& s) {
   return r;
 }
 
+emu::Texture level0Texture(uint32_t W, uint32_t H, const float* rgba, uint32_t scale) {
+  std::vector<std::vector<uint8_t>> levels(1, std::vector<uint8_t>(size_t(W) * H * scale * scale * 16));
+  float* d = reinterpret_cast<float*>(levels[0].data());
+  for (uint32_t y = 0; y < H * scale; ++y)
+    for (uint32_t x = 0; x < W * scale; ++x) std::memcpy(d + 4 * (size_t(y) * W * scale + x), rgba + 4 * (size_t(y / scale) * W + x / scale), 16);
+  return emu::Texture(emu::Format::RGBA32F, W * scale, H * scale, 1, std::move(levels));
+}
+
+// The sampler study of the MIS techniques (issue 5, item 5): env_sampling.csv.
+void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::DeviceProfile& dev, vk::Context* ctx, std::ostream& log) {
+  const std::string path = (std::filesystem::path(opts.out) / "env_sampling.csv").string();
+  std::ofstream csv(path);
+  if (!csv) throw std::runtime_error("sweep: cannot write " + path);
+  csv << "map,width,height,method,blocks,alpha,l1_misfit,build_ms,sampling_bytes,pdf_bytes,packed_kd_bytes,inversion_bytes,"
+         "compression_packed,compression_stored,samples_per_s_scalar,samples_per_s_simd,samples_per_s_vulkan,"
+         "ratio_vs_inversion_simd,ratio_vs_inversion_vulkan,checksums_equal\n";
+  const std::filesystem::path dir = std::filesystem::path(scene.environment).parent_path();
+  const char* names[3] = {"kd-tree", "alias", "inversion"};
+  log << "  sampler study (" << scene.envBlocks << " blocks; samples/s = one direction + the pdf lookup of it):\n";
+  for (const std::string& name : splitList(opts.maps)) {
+    const std::string file = (dir / (name + ".exr")).string();
+    if (!std::filesystem::exists(file)) throw std::invalid_argument("--maps: " + file + " does not exist (run scripts/setup.sh)");
+    std::ostringstream quiet;
+    const EnvironmentMap env = loadEnvironment(file, quiet);
+    for (uint32_t scale : {1u, 2u}) {
+      const emu::Texture tex = level0Texture(env.width, env.height, env.levels[0].data(), scale);
+      SamplerSpeed speed[3];
+      EnvSamplingTables T[3];
+      for (uint32_t m = 0; m < 3; ++m) {
+        T[m] = envSamplingTables(tex, m, scene.envBlocks);
+        if (scale == 1) speed[m] = envSamplerSpeed(T[m], dev, ctx, 32768, 32);
+      }
+      for (uint32_t m = 0; m < 3; ++m) {
+        const EnvSamplingTables& t = T[m];
+        const size_t inv = inversionTableBytes(tex.width(), tex.height()), packed = packedKdTreeBytes(t.blocks);
+        csv << name << "," << tex.width() << "," << tex.height() << "," << names[m] << "," << t.blocks << "," << std::setprecision(6)
+            << (m == 0 ? t.fit.alpha : NAN) << "," << (m == 0 ? t.fit.l1 : NAN) << "," << std::setprecision(3) << t.buildMs << ","
+            << t.samplingBytes << "," << t.pdfBytes << "," << (m < 2 ? packed : 0) << "," << inv << ","
+            << (m < 2 ? double(inv) / packed : 1.0) << "," << double(inv) / double(t.samplingBytes + t.pdfBytes) << ",";
+        if (scale == 1)
+          csv << std::setprecision(4) << speed[m].scalar << "," << speed[m].simd << "," << speed[m].vulkan << ","
+              << speed[m].simd / speed[2].simd << "," << speed[m].vulkan / speed[2].vulkan << ","
+              << (speed[m].checksumScalar == speed[m].checksumSimd && (!ctx || speed[m].checksumSimd == speed[m].checksumVulkan)) << "\n";
+        else
+          csv << ",,,,,\n";
+        log << "    " << std::left << std::setw(10) << name << std::right << std::setw(5) << tex.width() << "x" << std::setw(4)
+            << std::left << tex.height() << std::right << " " << std::setw(9) << names[m] << std::setprecision(1) << std::setw(7)
+            << t.buildMs << " ms  " << std::setw(9) << (t.samplingBytes + t.pdfBytes) / 1024.0 << " KiB";
+        if (m == 0) log << "  alpha " << std::setprecision(4) << t.fit.alpha << "  L1 " << t.fit.l1;
+        if (m < 2) log << "  1:" << std::setprecision(0) << double(inv) / packed << " packed";
+        if (scale == 1)
+          log << "  " << std::setprecision(2) << speed[m].scalar / 1e6 << " / " << speed[m].simd / 1e6 << " / " << speed[m].vulkan / 1e6
+              << " M/s (scalar / simd / vulkan)";
+        log << "\n";
+      }
+    }
+  }
+  log << "  wrote " << path << "\n";
+}
+
 }  // namespace
 
 int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   Scene scene = loadScene(opts.scene);
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
+  if (opts.blocks) scene.envBlocks = opts.blocks;
   const std::vector<std::string> techniques = splitList(opts.techniques);
   std::vector<uint32_t> samples;
   for (const std::string& s : splitList(opts.samples)) {
@@ -52,7 +115,8 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   }
   for (const std::string& t : techniques)
     if (!isTechnique(t) || t == "mirror")
-      throw std::invalid_argument("--technique: '" + t + "' is not a sampling technique (fis, unfiltered, stochastic, env)");
+      throw std::invalid_argument("--technique: '" + t +
+                                  "' is not a sampling technique (fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis)");
   if (techniques.empty() || samples.empty()) throw std::invalid_argument("sweep: no techniques or no sample counts");
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
@@ -107,7 +171,7 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
     PlotSeries ps{t, {}, {}}, pt{t, {}, {}};
     std::unique_ptr<ShadeInputs> inE;
     for (uint32_t n : samples) {
-      scene.fisSamples = n;
+      (usesMisPass(t) ? scene.misSamples : scene.fisSamples) = n;
       if (!inE || t == "env") inE = std::make_unique<ShadeInputs>(shadeInputsEmu(scene, *env.texture, *dev));
       std::vector<float> img;
       shadeEmu(scene, g, *inE, *dev, img);  // warm-up
@@ -134,6 +198,8 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
     }
     bySamples.push_back(ps), byTime.push_back(pt);
   }
+  if (std::any_of(techniques.begin(), techniques.end(), [](const std::string& t) { return usesMisPass(t); }))
+    envSamplerStudy(opts, scene, *dev, ctx.get(), log);
   const std::string stem = std::filesystem::path(opts.scene).stem().string();
   const std::string p1 = (std::filesystem::path(opts.out) / "rmse_vs_samples.png").string();
   const std::string p2 = (std::filesystem::path(opts.out) / "rmse_vs_time.png").string();

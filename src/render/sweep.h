@@ -3,7 +3,11 @@
 // the same frame on a Vulkan device (shading pass timed, submit to read-back) with the count of
 // bit-identical values, and its error against the reference renderer (Embree, MIS, no visibility)
 // over the pixels the G-buffer covers (the techniques differ only there). Writes sweep.csv and two
-// log-log plots (error vs samples, error vs emulator time).
+// log-log plots (error vs samples, error vs emulator time). For the MIS techniques (issue 5) the
+// count is the sample pairs per pixel, and the sweep adds the sampler study, env_sampling.csv: per
+// map (at its size and at 2x2 its size, the paper's 2048 x 1024) and sampler, the kd-tree's fitted
+// alpha and L1 misfit, build time, table memory and compression against the inversion tables, and
+// samples per second of the C++ scalar, C++ 8-lane and Vulkan builds from one run.
 #pragma once
 #include <cstdint>
 #include <ostream>
@@ -21,6 +25,8 @@ struct SweepOptions {
   uint32_t width = 0, height = 0;
   std::string device;            // Vulkan device substring; empty = lavapipe
   bool vulkan = true;            // --no-vulkan: emulator only
+  uint32_t blocks = 0;           // kd-tree blocks (0: the scene's mis.blocks)
+  std::string maps = "forest,courtyard,studio,city";  // sampler study (with a *-mis technique)
 };
 
 int sweepCommand(const SweepOptions& opts, std::ostream& log);

@@ -180,3 +180,15 @@ Float envPdf(Sampler2D table, Sampler2D texels, EnvSampling s, Float3 dir) {
   else p = envBlocksPdf(table, texels, s, dir);
   return p;
 }
+
+// Throughput probe (render/env_sampling_speed.cpp, src/shaders/env_sampling_speed.comp): n directions
+// of stream `index` drawn and their pdfs looked up; returns sum(pdf + dir.x) so no work is dead.
+Float envSamplingChecksum(Sampler2D table, Sampler2D texels, EnvSampling s, Uint index, uint n, uint seed) {
+  PRECISE Float sum = Float(0.0f);
+  for (uint j = 0u; j < n; j++) {
+    Float4 u = philoxUniform4(philox4x32(Philox4(index, Uint(j), Uint(2u), Uint(0u)), Uint(seed), Uint(0u)));
+    EnvSample e = sampleEnv(table, texels, s, u);
+    sum = sum + envPdf(table, texels, s, e.dir) + e.dir.x;
+  }
+  return sum;
+}
