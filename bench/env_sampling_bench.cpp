@@ -39,16 +39,19 @@ template <int Lanes>
 void BM_EnvSample(benchmark::State& state) {
   const auto T = shadetwin::envSamplingTables(city(), uint32_t(state.range(0)), 6144);
   const auto& dev = emu::lavapipeProfile();
-  const auto table = shadetwin::environmentSampler(*T.table, dev, false), texels = shadetwin::environmentSampler(*T.texels, dev, false);
+  const auto table = shadetwin::environmentSampler(*T.table, dev, false),
+             texels = shadetwin::environmentSampler(*T.texels, dev, false);
   const auto& u = T.uniforms;
   const uint32_t per = 64;
   uint32_t stream = 0;
   for (auto _ : state) {
     if constexpr (Lanes == 1) {
-      const shadetwin::shade::scalar::EnvSampling es{u.method, u.count, u.width, u.height, u.alpha, u.log2Span, u.invWidth, u.invHeight};
+      const shadetwin::shade::scalar::EnvSampling es{u.method, u.count,    u.width,    u.height,
+                                                     u.alpha,  u.log2Span, u.invWidth, u.invHeight};
       benchmark::DoNotOptimize(shadetwin::shade::scalar::envSamplingChecksum(table, texels, es, stream++, per, 1u));
     } else {
-      const shadetwin::shade::x8::EnvSampling es{u.method, u.count, u.width, u.height, u.alpha, u.log2Span, u.invWidth, u.invHeight};
+      const shadetwin::shade::x8::EnvSampling es{u.method, u.count,    u.width,    u.height,
+                                                 u.alpha,  u.log2Span, u.invWidth, u.invHeight};
       emu::U32<8> idx;
       for (int l = 0; l < 8; ++l) idx.set(l, stream * 8 + uint32_t(l));
       ++stream;

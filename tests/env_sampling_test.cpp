@@ -7,6 +7,8 @@
 //   - the pdf integrates to 1 over the sphere,
 //   - the scalar and the 8-lane builds give the same bits,
 //   - hard cases: an environment without light, one bright pixel, n = 1, city's sun, negative texels.
+#include "render/env_sampling.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,7 +17,6 @@
 #include <sstream>
 
 #include "emu/device_profile.h"
-#include "render/env_sampling.h"
 #include "render/gbuffer.h"
 #include "render/render.h"
 #include "shade/instantiate.h"
@@ -105,7 +106,8 @@ std::vector<double> promisedTexelProbabilities(const emu::Texture& env, uint32_t
 }
 
 // Chi-square statistic's upper tail (Wilson-Hilferty), bins pooled in order until >= 5 expected.
-double chiSquarePValue(const std::vector<double>& prob, const std::vector<double>& observed, double n, int* dofOut = nullptr) {
+double chiSquarePValue(const std::vector<double>& prob, const std::vector<double>& observed, double n,
+                       int* dofOut = nullptr) {
   double chi = 0, eAcc = 0, oAcc = 0;
   int pooled = 0;
   for (size_t i = 0; i < prob.size(); ++i) {
@@ -178,7 +180,8 @@ double pdfIntegral(const Bound& b, int sub) {
   for (uint32_t y = 0; y < H; ++y)
     for (uint32_t x = 0; x < W; ++x) {
       const double u = (x + 0.5) / W, v = (y + 0.5) / H, phi = (u - 0.5) * 2 * kPi, th = v * kPi;
-      const sc::Float3 d(float(std::sin(th) * std::sin(phi)), float(std::cos(th)), float(-std::sin(th) * std::cos(phi)));
+      const sc::Float3 d(float(std::sin(th) * std::sin(phi)), float(std::cos(th)),
+                         float(-std::sin(th) * std::cos(phi)));
       sum += double(sc::envPdf(b.table, b.texels, b.s, d)) * 2 * kPi * kPi * std::sin(th) / (double(W) * H);
     }
   return sum;
@@ -194,12 +197,13 @@ TEST(EnvSampling, ScalarAndSimdBuildsAgree) {
   using F8 = emu::F32<8>;
   for (uint32_t m : kMethods) {
     const Bound b = bind(env, m, 64);
-    const x8::EnvSampling s8{b.s.method, b.s.count, b.s.width, b.s.height, b.s.alpha, b.s.log2Span, b.s.invWidth, b.s.invHeight};
+    const x8::EnvSampling s8{b.s.method, b.s.count,    b.s.width,    b.s.height,
+                             b.s.alpha,  b.s.log2Span, b.s.invWidth, b.s.invHeight};
     for (uint32_t i = 0; i < 4096; i += 8) {
       emu::U32<8> ctr;
       for (int l = 0; l < 8; ++l) ctr.set(l, i + uint32_t(l));
-      const x8::Float4 u = x8::philoxUniform4(x8::philox4x32(x8::Philox4{ctr, emu::U32<8>(0u), emu::U32<8>(0u), emu::U32<8>(0u)},
-                                                             emu::U32<8>(3u), emu::U32<8>(99u)));
+      const x8::Float4 u = x8::philoxUniform4(x8::philox4x32(
+          x8::Philox4{ctr, emu::U32<8>(0u), emu::U32<8>(0u), emu::U32<8>(0u)}, emu::U32<8>(3u), emu::U32<8>(99u)));
       const x8::EnvSample e = x8::sampleEnv(b.table, b.texels, s8, u);
       const F8 q = x8::envPdf(b.table, b.texels, s8, e.dir);
       for (int l = 0; l < 8; ++l) {
@@ -216,7 +220,8 @@ TEST(EnvSampling, ScalarAndSimdBuildsAgree) {
 
 TEST(EnvSampling, EnvironmentWithoutLightIsSampledUniformly) {
   std::vector<float> t(32 * 16 * 4, 0.0f);
-  for (size_t i = 0; i < t.size(); i += 4) t[i] = t[i + 1] = t[i + 2] = (i / 4) % 3 ? 0.0f : -1.0f;  // zeros and negatives
+  for (size_t i = 0; i < t.size(); i += 4)
+    t[i] = t[i + 1] = t[i + 2] = (i / 4) % 3 ? 0.0f : -1.0f;  // zeros and negatives
   const emu::Texture env = envTexture(32, 16, t);
   for (uint32_t m : kMethods) {
     const Bound b = bind(env, m, 64);
@@ -243,7 +248,8 @@ TEST(EnvSampling, SingleBrightPixelAndOneBlock) {
     const auto p = promisedTexelProbabilities(env, m, 64, m == sc::kEnvKdTree);
     double hit = 0, promised = 0;
     for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) hit += h[size_t(10 + dy) * 64 + size_t(40 + dx)] / n, promised += p[size_t(10 + dy) * 64 + size_t(40 + dx)];
+      for (int dx = -1; dx <= 1; ++dx)
+        hit += h[size_t(10 + dy) * 64 + size_t(40 + dx)] / n, promised += p[size_t(10 + dy) * 64 + size_t(40 + dx)];
     EXPECT_NEAR(hit, promised, 4 * std::sqrt(promised * (1 - promised) / n) + 1e-4) << m;
     if (m != sc::kEnvKdTree) {
       EXPECT_GT(hit, 0.99) << m;
@@ -258,7 +264,8 @@ TEST(EnvSampling, SingleBrightPixelAndOneBlock) {
 
 TEST(EnvSampling, CitySunAndNegativeTexels) {
   std::ostringstream quiet;
-  const shadetwin::EnvironmentMap m = shadetwin::loadEnvironment(std::string(SHADETWIN_SOURCE_DIR) + "/assets/hdri/city.exr", quiet);
+  const shadetwin::EnvironmentMap m =
+      shadetwin::loadEnvironment(std::string(SHADETWIN_SOURCE_DIR) + "/assets/hdri/city.exr", quiet);
   const emu::Texture env = envTexture(m.width, m.height, m.levels[0]);
   for (uint32_t method : kMethods) {
     const Bound b = bind(env, method, 6144);

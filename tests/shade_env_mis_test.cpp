@@ -48,7 +48,8 @@ TEST(EnvMis, BrdfMixtureSamplerMatchesItsPdf) {
   // share pd > 0, g / p_b <= 1 / pd: a low-variance check. The glossy lobes alone are checked by
   // brdf_test's chi-square tests.)
   const sc::Float3 wo(0.3f, 0.1f, 0.948683f);
-  const sc::BrdfParams brdfs[] = {sc::brdfParams(sc::kBrdfWard, 1.0f, 0.15f, 0.3f), sc::brdfParams(sc::kBrdfGgx, 1.0f, 0.3f, 0.3f),
+  const sc::BrdfParams brdfs[] = {sc::brdfParams(sc::kBrdfWard, 1.0f, 0.15f, 0.3f),
+                                  sc::brdfParams(sc::kBrdfGgx, 1.0f, 0.3f, 0.3f),
                                   sc::brdfParams(sc::kBrdfPhong, 50.0f, 0.0f, 0.0f)};
   for (const auto& b : brdfs)
     for (float pd : {0.3f, 1.0f}) {
@@ -106,13 +107,15 @@ TEST(EnvMis, EstimatorIsUnbiased) {
     for (uint32_t y = 0; y < QH; ++y)
       for (uint32_t x = 0; x < QW; ++x) {
         const double u = (x + 0.5) / QW, v = (y + 0.5) / QH, phi = (u - 0.5) * 2 * kPi, th = v * kPi;
-        const sc::Float3 d(float(std::sin(th) * std::sin(phi)), float(std::cos(th)), float(-std::sin(th) * std::cos(phi)));
+        const sc::Float3 d(float(std::sin(th) * std::sin(phi)), float(std::cos(th)),
+                           float(-std::sin(th) * std::cos(phi)));
         const sc::Float3 c = sc::misIntegrand(envS, F, m.b, diffuse, specular, d, sc::basisToLocal(F.basis, d));
         ref += double(c.y) * 2 * kPi * kPi * std::sin(th) / (double(QW) * QH);
       }
     for (uint32_t method : {sc::kEnvKdTree, sc::kEnvAlias, sc::kEnvInversion, kWrongAlpha}) {
       const auto T = shadetwin::envSamplingTables(env, method == kWrongAlpha ? sc::kEnvKdTree : method, 64);
-      const auto table = shadetwin::environmentSampler(*T.table, dev, false), texels = shadetwin::environmentSampler(*T.texels, dev, false);
+      const auto table = shadetwin::environmentSampler(*T.table, dev, false),
+                 texels = shadetwin::environmentSampler(*T.texels, dev, false);
       const auto& U = T.uniforms;
       sc::EnvSampling es{U.method, U.count, U.width, U.height, U.alpha, U.log2Span, U.invWidth, U.invHeight};
       if (method == kWrongAlpha)  // negative control: sampling with another alpha than the pdf's
@@ -122,7 +125,8 @@ TEST(EnvMis, EstimatorIsUnbiased) {
         double s = 0, s2 = 0;
         for (int f = 0; f < frames; ++f) {
           const sc::MisSettings ms{h, 4u, uint32_t(f), 7u};
-          const float c = sc::shadeEnvMis(envS, table, texels, es, ms, 1.0f, 123u, g0, g1, g2, eye, eye, diffuse, specular, m.b).y;
+          const float c =
+              sc::shadeEnvMis(envS, table, texels, es, ms, 1.0f, 123u, g0, g1, g2, eye, eye, diffuse, specular, m.b).y;
           s += c, s2 += double(c) * c;
         }
         const double mean = s / frames, sd = std::sqrt(std::max(0.0, s2 / frames - mean * mean) / frames);
@@ -130,7 +134,8 @@ TEST(EnvMis, EstimatorIsUnbiased) {
           EXPECT_GT(std::fabs(mean - ref), 4 * sd + 0.005 * ref) << m.name << " heuristic " << h;  // the test has power
           continue;
         }
-        EXPECT_NEAR(mean, ref, 4 * sd + 0.005 * ref) << m.name << " method " << method << " heuristic " << h << " sd " << sd;
+        EXPECT_NEAR(mean, ref, 4 * sd + 0.005 * ref)
+            << m.name << " method " << method << " heuristic " << h << " sd " << sd;
         EXPECT_LT(sd, 0.02 * ref) << m.name << " method " << method;  // and it is informative
       }
     }

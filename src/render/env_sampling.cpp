@@ -56,7 +56,8 @@ void aliasTable(const std::vector<double>& p, std::vector<double>& q, std::vecto
 }  // namespace
 
 EnvSamplingTables envSamplingTables(const emu::Texture& env, uint32_t method, uint32_t blocks) {
-  if (env.format() != emu::Format::RGBA32F) throw std::invalid_argument("environment sampling: the environment must be RGBA32F");
+  if (env.format() != emu::Format::RGBA32F)
+    throw std::invalid_argument("environment sampling: the environment must be RGBA32F");
   EnvSamplingTables T;
   T.buildMs = timeMs([&] {
     const uint32_t W = env.width(), H = env.height();

@@ -23,11 +23,11 @@ struct EnvSamplingUniforms {
 };
 
 struct EnvSamplingTables {
-  EnvSamplingUniforms uniforms;               // what the kernels take as uniforms
-  std::shared_ptr<const emu::Texture> table;  // blocks (RGBA32F) or marginal CDF (R32F)
-  std::shared_ptr<const emu::Texture> texels; // rank per texel or conditional CDFs (R32F, W x H)
-  uint32_t blocks = 0;                        // blocks made (kd-tree, alias)
-  BlockFit fit;                               // kd-tree: alpha and its L1 misfit
+  EnvSamplingUniforms uniforms;                // what the kernels take as uniforms
+  std::shared_ptr<const emu::Texture> table;   // blocks (RGBA32F) or marginal CDF (R32F)
+  std::shared_ptr<const emu::Texture> texels;  // rank per texel or conditional CDFs (R32F, W x H)
+  uint32_t blocks = 0;                         // blocks made (kd-tree, alias)
+  BlockFit fit;                                // kd-tree: alpha and its L1 misfit
   /// Bytes the sampler needs to draw directions (kd-tree: the block records; alias: + the alias
   /// table; inversion: both CDFs), and the bytes the pdf of an arbitrary direction adds (kd-tree,
   /// alias: the texel -> rank texture; inversion: nothing).

@@ -9,16 +9,18 @@
 #include "render/env_sampling.h"
 
 namespace shadetwin {
-namespace vk { class Context; }
+namespace vk {
+class Context;
+}
 
 struct SamplerSpeed {
-  double scalar = 0, simd = 0, vulkan = 0;  // samples per second (vulkan: NaN without a device)
+  double scalar = 0, simd = 0, vulkan = 0;                          // samples per second (vulkan: NaN without a device)
   double checksumScalar = 0, checksumSimd = 0, checksumVulkan = 0;  // the sum of the probe's outputs
 };
 
 /// `streams` independent streams of `perStream` samples each; best of `repeats` timed runs after a
 /// warm-up. ctx may be null.
-SamplerSpeed envSamplerSpeed(const EnvSamplingTables& T, const emu::DeviceProfile& dev, vk::Context* ctx, uint32_t streams,
-                             uint32_t perStream, int repeats = 3);
+SamplerSpeed envSamplerSpeed(const EnvSamplingTables& T, const emu::DeviceProfile& dev, vk::Context* ctx,
+                             uint32_t streams, uint32_t perStream, int repeats = 3);
 
 }  // namespace shadetwin
