@@ -30,9 +30,9 @@ int benchCommand(const BenchOptions& opts, std::ostream& log) {
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
   if (!opts.technique.empty()) scene.technique = opts.technique;
-  if (opts.samples) scene.fisSamples = opts.samples;
+  if (opts.samples) (usesMisPass(scene.technique) ? scene.misSamples : scene.fisSamples) = opts.samples;
   if (!isTechnique(scene.technique))
-    throw std::invalid_argument("--technique: unknown technique '" + scene.technique + "' (expected fis, unfiltered, stochastic, env or mirror)");
+    throw std::invalid_argument("--technique: unknown technique '" + scene.technique + "' (expected fis, unfiltered, stochastic, env, mirror, kdtree-mis, alias-mis or inversion-mis)");
   std::vector<std::string> passes;
   std::stringstream ss(opts.passes);
   for (std::string p; std::getline(ss, p, ',');) {
@@ -46,7 +46,8 @@ int benchCommand(const BenchOptions& opts, std::ostream& log) {
   log << "bench " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << scene.triangles()
       << " triangles; shadow maps " << opts.directions << " x " << opts.shadowSize << "^2; device " << ctx.deviceName()
       << " (profile " << dev.name << "); technique " << scene.technique;
-  if (scene.technique != "mirror") log << " (" << scene.fisSamples << " samples)";
+  if (usesMisPass(scene.technique)) log << " (" << scene.misSamples << " sample pairs)";
+  else if (scene.technique != "mirror") log << " (" << scene.fisSamples << " samples)";
   log << "; median of " << opts.repeat << " runs\n";
   const std::vector<Vec3> dirs = sphereDirections(opts.directions);
   std::ostringstream quiet;
