@@ -14,11 +14,7 @@ std::vector<double> weights(const std::string& name, int scale, uint32_t& W, uin
   const shadetwin::EnvironmentMap env =
       shadetwin::loadEnvironment(std::string(SHADETWIN_SOURCE_DIR) + "/assets/hdri/" + name + ".exr", quiet);
   W = env.width * uint32_t(scale), H = env.height * uint32_t(scale);
-  std::vector<float> big(size_t(W) * H * 4);
-  for (uint32_t y = 0; y < H; ++y)
-    for (uint32_t x = 0; x < W; ++x)
-      for (int c = 0; c < 4; ++c)
-        big[4 * (size_t(y) * W + x) + size_t(c)] = env.levels[0][4 * (size_t(y / uint32_t(scale)) * env.width + x / uint32_t(scale)) + size_t(c)];
+  const std::vector<float> big = shadetwin::repeatTexels(env.levels[0].data(), env.width, env.height, uint32_t(scale));
   return shadetwin::envSamplingWeights(big.data(), W, H);
 }
 

@@ -20,9 +20,7 @@ const emu::Texture& city() {
     std::ostringstream quiet;
     const shadetwin::EnvironmentMap env =
         shadetwin::loadEnvironment(std::string(SHADETWIN_SOURCE_DIR) + "/assets/hdri/city.exr", quiet);
-    std::vector<std::vector<uint8_t>> levels(1, std::vector<uint8_t>(env.levels[0].size() * 4));
-    std::memcpy(levels[0].data(), env.levels[0].data(), levels[0].size());
-    return emu::Texture(emu::Format::RGBA32F, env.width, env.height, 1, std::move(levels));
+    return emu::floatTexture(emu::Format::RGBA32F, env.width, env.height, env.levels[0].data());
   }();
   return t;
 }
@@ -46,12 +44,10 @@ void BM_EnvSample(benchmark::State& state) {
   uint32_t stream = 0;
   for (auto _ : state) {
     if constexpr (Lanes == 1) {
-      const shadetwin::shade::scalar::EnvSampling es{u.method, u.count,    u.width,    u.height,
-                                                     u.alpha,  u.log2Span, u.invWidth, u.invHeight};
+      const auto es = shadetwin::toEnvSampling<shadetwin::shade::scalar::EnvSampling>(u);
       benchmark::DoNotOptimize(shadetwin::shade::scalar::envSamplingChecksum(table, texels, es, stream++, per, 1u));
     } else {
-      const shadetwin::shade::x8::EnvSampling es{u.method, u.count,    u.width,    u.height,
-                                                 u.alpha,  u.log2Span, u.invWidth, u.invHeight};
+      const auto es = shadetwin::toEnvSampling<shadetwin::shade::x8::EnvSampling>(u);
       emu::U32<8> idx;
       for (int l = 0; l < 8; ++l) idx.set(l, stream * 8 + uint32_t(l));
       ++stream;

@@ -6,6 +6,13 @@
 
 namespace emu {
 
+Texture floatTexture(Format format, uint32_t width, uint32_t height, const float* texels) {
+  if (format != Format::RGBA32F && format != Format::R32F) throw std::invalid_argument("floatTexture: expected rgba32f or r32f");
+  std::vector<std::vector<uint8_t>> levels(1, std::vector<uint8_t>(size_t(width) * height * formatInfo(format).texelBytes));
+  std::memcpy(levels[0].data(), texels, levels[0].size());
+  return Texture(format, width, height, 1, std::move(levels));
+}
+
 uint32_t Texture::fullChainLevels(uint32_t width, uint32_t height) {
   uint32_t m = width > height ? width : height, n = 1;
   while (m > 1) { m >>= 1; ++n; }

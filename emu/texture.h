@@ -49,6 +49,10 @@ class Texture {
   std::vector<std::vector<uint8_t>> levels_;
 };
 
+/// One level, one layer of 32-bit float texels copied from `texels` (RGBA32F: 4 floats per texel,
+/// R32F: 1); throws std::invalid_argument for other formats.
+Texture floatTexture(Format format, uint32_t width, uint32_t height, const float* texels);
+
 /// unorm8 -> float as lavapipe converts it: byte * (1.0f / 255.0f) (1 ulp off byte/255 for 126 values).
 inline float unorm8ToFloat(uint8_t b) { return float(b) * (1.0f / 255.0f); }
 

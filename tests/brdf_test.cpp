@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "reference/reference_brdf.h"
+#include "chi_square.h"
 #include "shade/instantiate.h"
 #include "verify/verify.h"
 
@@ -151,12 +152,6 @@ std::vector<double> binIntegrals(const Case& c, const Bins& B, int sub) {
   return out;
 }
 
-// Upper tail of the chi-square distribution (Wilson-Hilferty normal approximation, fine for dof > 30).
-double chiSquareTail(double x, int dof) {
-  const double k = dof, z = (std::cbrt(x / k) - (1 - 2 / (9 * k))) / std::sqrt(2 / (9 * k));
-  return 0.5 * std::erfc(z / std::sqrt(2.0));
-}
-
 struct GoF {
   double pValue = 0, validFraction = 0, pdfIntegral = 0;
   int dof = 0;
@@ -181,19 +176,9 @@ GoF goodnessOfFit(const Case& c, const sc::BrdfParams& samplerParams, int sample
   GoF g;
   g.validFraction = double(valid) / samples;
   for (double m : mass) g.pdfIntegral += m;
-  // Pool bins in order until each pooled bin expects >= 5.
-  double chi = 0, eAcc = 0, oAcc = 0;
-  int pooled = 0;
-  for (size_t i = 0; i < mass.size(); ++i) {
-    eAcc += mass[i] * samples, oAcc += observed[i];
-    if (eAcc >= 5) {
-      chi += (oAcc - eAcc) * (oAcc - eAcc) / eAcc;
-      ++pooled, eAcc = 0, oAcc = 0;
-    }
-  }
-  if (eAcc > 0) chi += (oAcc - eAcc) * (oAcc - eAcc) / std::max(eAcc, 1e-9), ++pooled;
-  g.dof = pooled - 1;
-  g.pValue = chiSquareTail(chi, g.dof);
+  const shadetwin::test::ChiSquare c2 = shadetwin::test::pooledChiSquare(mass, observed, samples);
+  g.dof = c2.dof;
+  g.pValue = c2.pValue;
   return g;
 }
 

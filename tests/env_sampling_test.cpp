@@ -19,6 +19,7 @@
 #include "emu/device_profile.h"
 #include "render/gbuffer.h"
 #include "render/render.h"
+#include "chi_square.h"
 #include "shade/instantiate.h"
 
 namespace {
@@ -29,9 +30,7 @@ constexpr double kPi = std::numbers::pi;
 const uint32_t kMethods[] = {sc::kEnvKdTree, sc::kEnvAlias, sc::kEnvInversion};
 
 emu::Texture envTexture(uint32_t W, uint32_t H, const std::vector<float>& rgba) {
-  std::vector<std::vector<uint8_t>> levels(1, std::vector<uint8_t>(rgba.size() * 4));
-  std::memcpy(levels[0].data(), rgba.data(), levels[0].size());
-  return emu::Texture(emu::Format::RGBA32F, W, H, 1, std::move(levels));
+  return emu::floatTexture(emu::Format::RGBA32F, W, H, rgba.data());
 }
 
 // A 64 x 32 map: log-normal noise, a bright 2 x 2 spot, a band of 3 rows of negative texels (the
@@ -62,7 +61,7 @@ Bound bind(const emu::Texture& env, uint32_t method, uint32_t blocks) {
   b.table = shadetwin::environmentSampler(*b.T.table, dev, false);
   b.texels = shadetwin::environmentSampler(*b.T.texels, dev, false);
   const auto& u = b.T.uniforms;
-  b.s = sc::EnvSampling{u.method, u.count, u.width, u.height, u.alpha, u.log2Span, u.invWidth, u.invHeight};
+  b.s = shadetwin::toEnvSampling<sc::EnvSampling>(u);
   return b;
 }
 
@@ -105,19 +104,10 @@ std::vector<double> promisedTexelProbabilities(const emu::Texture& env, uint32_t
   return p;
 }
 
-// Chi-square statistic's upper tail (Wilson-Hilferty), bins pooled in order until >= 5 expected.
-double chiSquarePValue(const std::vector<double>& prob, const std::vector<double>& observed, double n,
-                       int* dofOut = nullptr) {
-  double chi = 0, eAcc = 0, oAcc = 0;
-  int pooled = 0;
-  for (size_t i = 0; i < prob.size(); ++i) {
-    eAcc += prob[i] * n, oAcc += observed[i];
-    if (eAcc >= 5) chi += (oAcc - eAcc) * (oAcc - eAcc) / eAcc, ++pooled, eAcc = 0, oAcc = 0;
-  }
-  if (oAcc > 0 || eAcc > 0) chi += (oAcc - eAcc) * (oAcc - eAcc) / std::max(eAcc, 1e-9), ++pooled;
-  const double k = pooled - 1, z = (std::cbrt(chi / k) - (1 - 2 / (9 * k))) / std::sqrt(2 / (9 * k));
-  if (dofOut) *dofOut = pooled - 1;
-  return 0.5 * std::erfc(z / std::sqrt(2.0));
+double chiSquarePValue(const std::vector<double>& prob, const std::vector<double>& observed, double n, int* dofOut = nullptr) {
+  const shadetwin::test::ChiSquare c = shadetwin::test::pooledChiSquare(prob, observed, n);
+  if (dofOut) *dofOut = c.dof;
+  return c.pValue;
 }
 
 std::vector<double> histogram(const Bound& b, int n, uint32_t seed) {
@@ -197,8 +187,7 @@ TEST(EnvSampling, ScalarAndSimdBuildsAgree) {
   using F8 = emu::F32<8>;
   for (uint32_t m : kMethods) {
     const Bound b = bind(env, m, 64);
-    const x8::EnvSampling s8{b.s.method, b.s.count,    b.s.width,    b.s.height,
-                             b.s.alpha,  b.s.log2Span, b.s.invWidth, b.s.invHeight};
+    const auto s8 = shadetwin::toEnvSampling<x8::EnvSampling>(b.T.uniforms);
     for (uint32_t i = 0; i < 4096; i += 8) {
       emu::U32<8> ctr;
       for (int l = 0; l < 8; ++l) ctr.set(l, i + uint32_t(l));
@@ -257,7 +246,7 @@ TEST(EnvSampling, SingleBrightPixelAndOneBlock) {
   }
   // n = 1: one block, the whole map, uniform in (u, v): pdf 1 / (2 pi^2 sin theta).
   const Bound one = bind(env, sc::kEnvKdTree, 1);
-  EXPECT_EQ(one.T.blocks, 1u);
+  EXPECT_EQ(one.T.uniforms.count, 1u);
   EXPECT_NEAR(sc::envPdf(one.table, one.texels, one.s, sc::Float3(0.0f, 0.0f, -1.0f)) * 2 * kPi * kPi, 1.0, 1e-5);
   EXPECT_NEAR(pdfIntegral(one, 2), 1.0, 1e-3);
 }

@@ -80,9 +80,7 @@ emu::Texture smallEnv() {
       if (y >= 20 && y < 23) p[0] = p[1] = p[2] = 0.0f;
       if ((x == 20 || x == 21) && (y == 9 || y == 10)) p[0] = p[1] = p[2] = 400.0f;
     }
-  std::vector<std::vector<uint8_t>> levels(1, std::vector<uint8_t>(t.size() * 4));
-  std::memcpy(levels[0].data(), t.data(), levels[0].size());
-  return emu::Texture(emu::Format::RGBA32F, W, H, 1, std::move(levels));
+  return emu::floatTexture(emu::Format::RGBA32F, W, H, t.data());
 }
 
 TEST(EnvMis, EstimatorIsUnbiased) {
@@ -117,7 +115,7 @@ TEST(EnvMis, EstimatorIsUnbiased) {
       const auto table = shadetwin::environmentSampler(*T.table, dev, false),
                  texels = shadetwin::environmentSampler(*T.texels, dev, false);
       const auto& U = T.uniforms;
-      sc::EnvSampling es{U.method, U.count, U.width, U.height, U.alpha, U.log2Span, U.invWidth, U.invHeight};
+      auto es = shadetwin::toEnvSampling<sc::EnvSampling>(U);
       if (method == kWrongAlpha)  // negative control: sampling with another alpha than the pdf's
         es.alpha *= 0.05f, es.log2Span = float(std::log2(1.0 + U.count / double(es.alpha)));
       for (uint32_t h : {sc::kMisBalance, sc::kMisPower}) {

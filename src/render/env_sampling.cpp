@@ -20,9 +20,7 @@ uint32_t envMethodOf(const std::string& technique) {
 namespace {
 
 std::shared_ptr<const emu::Texture> floatTexture(emu::Format f, uint32_t w, uint32_t h, const std::vector<float>& v) {
-  std::vector<std::vector<uint8_t>> levels(1, std::vector<uint8_t>(v.size() * 4));
-  std::memcpy(levels[0].data(), v.data(), levels[0].size());
-  return std::make_shared<emu::Texture>(f, w, h, 1, std::move(levels));
+  return std::make_shared<emu::Texture>(emu::floatTexture(f, w, h, v.data()));
 }
 
 // Walker / Vose alias table of probabilities p (sum 1): q_k and alias_k with
@@ -99,7 +97,6 @@ EnvSamplingTables envSamplingTables(const emu::Texture& env, uint32_t method, ui
     const EnvKdTree tree = buildEnvKdTree(w, W, H, std::max(1u, blocks));
     const std::vector<uint32_t> order = blocksByMean(tree);
     const uint32_t n = uint32_t(order.size());
-    T.blocks = n;
     std::vector<double> e(n);
     for (uint32_t k = 0; k < n; ++k) e[k] = tree.blocks[order[k]].sum / tree.total;
     T.fit = fitBlockAlpha(e);

@@ -22,11 +22,16 @@ struct EnvSamplingUniforms {
   float alpha = 1, log2Span = 0, invWidth = 0, invHeight = 0;
 };
 
+/// The uniforms as the EnvSampling of a lane instantiation (shade::scalar::EnvSampling, shade::x8::...).
+template <class EnvSampling>
+EnvSampling toEnvSampling(const EnvSamplingUniforms& u) {
+  return EnvSampling{u.method, u.count, u.width, u.height, u.alpha, u.log2Span, u.invWidth, u.invHeight};
+}
+
 struct EnvSamplingTables {
-  EnvSamplingUniforms uniforms;                // what the kernels take as uniforms
+  EnvSamplingUniforms uniforms;                // the kernels' uniforms (count: blocks made; 0 for inversion)
   std::shared_ptr<const emu::Texture> table;   // blocks (RGBA32F) or marginal CDF (R32F)
   std::shared_ptr<const emu::Texture> texels;  // rank per texel or conditional CDFs (R32F, W x H)
-  uint32_t blocks = 0;                         // blocks made (kd-tree, alias)
   BlockFit fit;                                // kd-tree: alpha and its L1 misfit
   /// Bytes the sampler needs to draw directions (kd-tree: the block records; alias: + the alias
   /// table; inversion: both CDFs), and the bytes the pdf of an arbitrary direction adds (kd-tree,

@@ -35,8 +35,7 @@ SamplerSpeed envSamplerSpeed(const EnvSamplingTables& T, const emu::DeviceProfil
   const double total = double(streams) * perStream;
   std::vector<float> out(streams);
   {
-    const shade::scalar::EnvSampling es{u.method, u.count,    u.width,    u.height,
-                                        u.alpha,  u.log2Span, u.invWidth, u.invHeight};
+    const auto es = toEnvSampling<shade::scalar::EnvSampling>(u);
     const double ms = bestMs(repeats, [&] {
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, streams, 64), [&](const tbb::blocked_range<uint32_t>& b) {
         for (uint32_t i = b.begin(); i != b.end(); ++i)
@@ -47,7 +46,7 @@ SamplerSpeed envSamplerSpeed(const EnvSamplingTables& T, const emu::DeviceProfil
     for (float v : out) r.checksumScalar += v;
   }
   {
-    const shade::x8::EnvSampling es{u.method, u.count, u.width, u.height, u.alpha, u.log2Span, u.invWidth, u.invHeight};
+    const auto es = toEnvSampling<shade::x8::EnvSampling>(u);
     const double ms = bestMs(repeats, [&] {
       tbb::parallel_for(tbb::blocked_range<uint32_t>(0, (streams + 7) / 8, 8),
                         [&](const tbb::blocked_range<uint32_t>& b) {

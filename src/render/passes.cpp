@@ -274,7 +274,7 @@ void shadeMisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
   const shade::Sampler2D table = environmentSampler(*in.envTables->table, dev, false);
   const shade::Sampler2D texels = environmentSampler(*in.envTables->texels, dev, false);
   const EnvSamplingUniforms& u = in.envTables->uniforms;
-  const shade::x8::EnvSampling es{u.method, u.count, u.width, u.height, u.alpha, u.log2Span, u.invWidth, u.invHeight};
+  const auto es = toEnvSampling<shade::x8::EnvSampling>(u);
   const shade::x8::MisSettings ms{scene.misHeuristic, scene.misSamples, scene.misFrame, scene.misSeed};
   const F8 intensity(scene.environmentIntensity);
   const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);

@@ -72,6 +72,14 @@ uint32_t environmentShift(uint32_t width, double degrees) {
   return uint32_t(std::lround(cols < 0 ? cols + width : cols)) % width;
 }
 
+std::vector<float> repeatTexels(const float* rgba, uint32_t width, uint32_t height, uint32_t scale) {
+  const uint32_t W = width * scale, H = height * scale;
+  std::vector<float> out(size_t(W) * H * 4);
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) std::memcpy(&out[4 * (size_t(y) * W + x)], rgba + 4 * (size_t(y / scale) * width + x / scale), 16);
+  return out;
+}
+
 EnvironmentMap rotateEnvironment(const EnvironmentMap& env, double degrees) {
   const uint32_t W = env.width, H = env.height, s = environmentShift(W, degrees);
   const std::vector<float>& src = env.levels[0];
@@ -162,7 +170,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       if (in.envTables && cache.lastRebuilt()) {
         const EnvSamplingTables& T = *in.envTables;
         passes << "  sampler tables (host)    " << std::setw(8) << T.buildMs << " ms  (" << scene.technique;
-        if (T.blocks) passes << ": " << T.blocks << " blocks, alpha " << std::setprecision(4) << T.fit.alpha << ", L1 misfit " << T.fit.l1
+        if (T.uniforms.count) passes << ": " << T.uniforms.count << " blocks, alpha " << std::setprecision(4) << T.fit.alpha << ", L1 misfit " << T.fit.l1
                              << std::setprecision(1);
         passes << ")\n";
       }

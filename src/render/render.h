@@ -39,6 +39,8 @@ uint32_t environmentShift(uint32_t width, double degrees);
 /// its MIP chain rebuilt. Positive degrees turn it right-handedly about +y: a light at azimuth
 /// atan2(x, -z) = phi moves to phi - degrees (its column u W to u W - shift).
 EnvironmentMap rotateEnvironment(const EnvironmentMap& env, double degrees);
+/// RGBA texels of a W x H map with each texel repeated scale x scale times ((W scale) x (H scale)).
+std::vector<float> repeatTexels(const float* rgba, uint32_t width, uint32_t height, uint32_t scale);
 
 int renderCommand(const RenderOptions& opts, std::ostream& log);
 

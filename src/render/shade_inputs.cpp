@@ -7,32 +7,35 @@
 #include "util/timer.h"
 
 namespace shadetwin {
-ShadeInputs shadeInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
+namespace {
+// One recipe for both builds: the atlas, the SH and the material maps come from the build that renders
+// (atlas(), sh(), maps()); the light list and the sampler tables are host-built, the same for both.
+template <class Atlas, class Sh, class Maps>
+ShadeInputs shadeInputsWith(const Scene& scene, const emu::Texture& env, Atlas atlas, Sh sh, Maps maps) {
   ShadeInputs in;
   in.environment = &env;
   if (usesFisPass(scene.technique)) {
-    in.atlasMs = timeMs([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureEmu(env, dev, scene.fisFaceSize)); });
-    in.shMs = timeMs([&] { in.sh = shIrradianceEmu(env, dev); });
+    in.atlasMs = timeMs([&] { in.atlas = std::make_shared<emu::Texture>(atlas()); });
+    in.shMs = timeMs([&] { in.sh = sh(); });
   }
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
   if (usesMisPass(scene.technique))
     in.envTables = std::make_shared<EnvSamplingTables>(envSamplingTables(env, envMethodOf(scene.technique), scene.envBlocks));
-  if (scene.technique != "mirror") in.maps = std::make_shared<emu::Texture>(materialMapsEmu(loadMaterialMaps(scene)));
+  if (scene.technique != "mirror") in.maps = std::make_shared<emu::Texture>(maps(loadMaterialMaps(scene)));
   return in;
+}
+}  // namespace
+
+ShadeInputs shadeInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
+  return shadeInputsWith(
+      scene, env, [&] { return paraboloidTextureEmu(env, dev, scene.fisFaceSize); }, [&] { return shIrradianceEmu(env, dev); },
+      [](const MaterialMapImages& m) { return materialMapsEmu(m); });
 }
 
 ShadeInputs shadeInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::Texture& env) {
-  ShadeInputs in;
-  in.environment = &env;
-  if (usesFisPass(scene.technique)) {
-    in.atlasMs = timeMs([&] { in.atlas = std::make_shared<emu::Texture>(paraboloidTextureVulkan(ctx, env, scene.fisFaceSize)); });
-    in.shMs = timeMs([&] { in.sh = shIrradianceVulkan(ctx, env); });
-  }
-  if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
-  if (usesMisPass(scene.technique))
-    in.envTables = std::make_shared<EnvSamplingTables>(envSamplingTables(env, envMethodOf(scene.technique), scene.envBlocks));
-  if (scene.technique != "mirror") in.maps = std::make_shared<emu::Texture>(materialMapsVulkan(ctx, loadMaterialMaps(scene)));
-  return in;
+  return shadeInputsWith(
+      scene, env, [&] { return paraboloidTextureVulkan(ctx, env, scene.fisFaceSize); }, [&] { return shIrradianceVulkan(ctx, env); },
+      [&](const MaterialMapImages& m) { return materialMapsVulkan(ctx, m); });
 }
 
 uint64_t shadeInputsKey(const Scene& scene, const emu::Texture& env) {

@@ -38,14 +38,6 @@ std::vector<std::string> splitList(const std::string& s) {
   return r;
 }
 
-emu::Texture level0Texture(uint32_t W, uint32_t H, const float* rgba, uint32_t scale) {
-  std::vector<std::vector<uint8_t>> levels(1, std::vector<uint8_t>(size_t(W) * H * scale * scale * 16));
-  float* d = reinterpret_cast<float*>(levels[0].data());
-  for (uint32_t y = 0; y < H * scale; ++y)
-    for (uint32_t x = 0; x < W * scale; ++x) std::memcpy(d + 4 * (size_t(y) * W * scale + x), rgba + 4 * (size_t(y / scale) * W + x / scale), 16);
-  return emu::Texture(emu::Format::RGBA32F, W * scale, H * scale, 1, std::move(levels));
-}
-
 // The sampler study of the MIS techniques (issue 5, item 5): env_sampling.csv.
 void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::DeviceProfile& dev, vk::Context* ctx, std::ostream& log) {
   const std::string path = (std::filesystem::path(opts.out) / "env_sampling.csv").string();
@@ -63,7 +55,8 @@ void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::De
     std::ostringstream quiet;
     const EnvironmentMap env = loadEnvironment(file, quiet);
     for (uint32_t scale : {1u, 2u}) {
-      const emu::Texture tex = level0Texture(env.width, env.height, env.levels[0].data(), scale);
+      const emu::Texture tex = emu::floatTexture(emu::Format::RGBA32F, env.width * scale, env.height * scale,
+                                                 repeatTexels(env.levels[0].data(), env.width, env.height, scale).data());
       SamplerSpeed speed[3];
       EnvSamplingTables T[3];
       for (uint32_t m = 0; m < 3; ++m) {
@@ -72,8 +65,8 @@ void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::De
       }
       for (uint32_t m = 0; m < 3; ++m) {
         const EnvSamplingTables& t = T[m];
-        const size_t inv = inversionTableBytes(tex.width(), tex.height()), packed = packedKdTreeBytes(t.blocks);
-        csv << name << "," << tex.width() << "," << tex.height() << "," << names[m] << "," << t.blocks << "," << std::setprecision(6)
+        const size_t inv = inversionTableBytes(tex.width(), tex.height()), packed = packedKdTreeBytes(t.uniforms.count);
+        csv << name << "," << tex.width() << "," << tex.height() << "," << names[m] << "," << t.uniforms.count << "," << std::setprecision(6)
             << (m == 0 ? t.fit.alpha : NAN) << "," << (m == 0 ? t.fit.l1 : NAN) << "," << std::setprecision(3) << t.buildMs << ","
             << t.samplingBytes << "," << t.pdfBytes << "," << (m < 2 ? packed : 0) << "," << inv << ","
             << (m < 2 ? double(inv) / packed : 1.0) << "," << double(inv) / double(t.samplingBytes + t.pdfBytes) << ",";

@@ -23,15 +23,20 @@ const uint kMisPower = 1u;
 const uint kMisEnvOnly = 2u;
 const uint kMisBrdfOnly = 3u;
 
-// w / p of one strategy's sample: p this strategy's pdf, q the other's, both at the sample's direction.
+// w / p of one strategy's sample: p this strategy's pdf, q the other's, both at the sample's direction
+// (one division: the heuristic is uniform).
 Float misWeightOverPdf(uint heuristic, Mask envStrategy, Float p, Float q) {
-  PRECISE Float balance = exDiv(1.0f, p + q);
-  PRECISE Float power = exDiv(p, p * p + q * q);
-  PRECISE Float single = exDiv(1.0f, p);
-  Float r = balance;
-  if (heuristic == kMisPower) r = power;
-  if (heuristic == kMisEnvOnly) r = select(envStrategy, single, Float(0.0f));
-  if (heuristic == kMisBrdfOnly) r = select(envStrategy, Float(0.0f), single);
+  PRECISE Float num = Float(1.0f);
+  PRECISE Float den = p + q;  // balance
+  if (heuristic == kMisPower) {
+    num = p;
+    den = p * p + q * q;
+  }
+  if (heuristic == kMisEnvOnly || heuristic == kMisBrdfOnly) {
+    num = select(envStrategy == Mask(heuristic == kMisEnvOnly), Float(1.0f), Float(0.0f));
+    den = p;
+  }
+  PRECISE Float r = exDiv(num, den);
   return select(p > 0.0f, r, Float(0.0f));
 }
 
@@ -55,12 +60,16 @@ Float misBrdfPdf(BrdfParams brdf, Float pd, Float3 wo, Float3 wi) {
   return p;
 }
 
-// Local direction drawn from p_b: the diffuse lobe (cosine) if u.z < pd, else the glossy lobe.
+// Local direction drawn from p_b: the diffuse lobe (cosine) if u.z < pd, else the glossy lobe (a lobe
+// no lane draws is not sampled).
 Float3 sampleMisBrdf(BrdfParams brdf, Float pd, Float3 wo, Float4 u) {
   Float2 uv = Float2(u.x, u.y);
-  Float3 wd = sampleCosineLobe(Float3(0.0f, 0.0f, 1.0f), 1.0f, uv).w;
-  Float3 wg = sampleBrdf(brdf, wo, uv).wi;
-  return select(u.z < pd, wd, wg);
+  Mask diffuse = u.z < pd;
+  Mask glossy = !diffuse;
+  Float3 w = Float3(0.0f, 0.0f, 1.0f);
+  IF_ANY(diffuse) { w = select(diffuse, sampleCosineLobe(Float3(0.0f, 0.0f, 1.0f), 1.0f, uv).w, w); }
+  IF_ANY(glossy) { w = select(glossy, sampleBrdf(brdf, wo, uv).wi, w); }
+  return w;
 }
 
 // L f cos of a world direction (0 below the surface), f = kd/pi + ks fs.

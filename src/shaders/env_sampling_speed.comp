@@ -9,16 +9,12 @@
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D table;  // render/env_sampling.h
 layout(set = 0, binding = 1) uniform sampler2D texels;
-layout(std430, set = 0, binding = 2) readonly buffer Settings {
-  uint method, blockCount, envWidth, envHeight;
-  float alpha, log2Span, invEnvWidth, invEnvHeight;
-} st;
+layout(std430, set = 0, binding = 2) readonly buffer Settings { EnvSampling es; } st;  // EnvSamplingUniforms
 layout(std430, set = 0, binding = 3) writeonly buffer Out { float sums[]; };
 layout(push_constant) uniform Push { uint count, perInvocation, seed, pad; } pc;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  EnvSampling es = EnvSampling(st.method, st.blockCount, st.envWidth, st.envHeight, st.alpha, st.log2Span, st.invEnvWidth, st.invEnvHeight);
-  float s = envSamplingChecksum(table, texels, es, i, pc.perInvocation, pc.seed);
+  float s = envSamplingChecksum(table, texels, st.es, i, pc.perInvocation, pc.seed);
   if (i < pc.count) sums[i] = s;
 }

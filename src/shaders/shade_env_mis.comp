@@ -12,12 +12,8 @@ layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufFis gbuf[]; };
 struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lobe0; vec4 lobe1; vec4 rho; uvec4 maps; };  // render/material.h
 layout(std430, set = 0, binding = 2) readonly buffer Materials { MaterialGpu materials[]; };
 layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
-// render/shade_vk.cpp MisSettingsGpu: EnvSampling then MisSettings, field for field.
-layout(std430, set = 0, binding = 4) readonly buffer Settings {
-  uint method, blockCount, envWidth, envHeight;
-  float alpha, log2Span, invEnvWidth, invEnvHeight;
-  uint heuristic, sampleCount, frame, seed;
-} st;
+// render/shade_vk.cpp MisSettingsGpu: the shared structs themselves (std430, 32 + 16 bytes).
+layout(std430, set = 0, binding = 4) readonly buffer Settings { EnvSampling es; MisSettings ms; } st;
 layout(set = 0, binding = 5) uniform sampler2DArray maps;  // render/material.h
 layout(set = 0, binding = 6) uniform sampler2D table;      // render/env_sampling.h
 layout(set = 0, binding = 7) uniform sampler2D texels;
@@ -35,8 +31,6 @@ void main() {
   SurfaceMaterial m = surfaceMaterial(maps, r.diffuse.xyz, r.specular.xyz, brdfParamsPacked(r.kind.x, r.brdf, r.lobe0, r.lobe1, r.rho),
                                       r.maps.x, r.maps.y, r.maps.z, g.g1, g.g2, g.g3);
   vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
-  EnvSampling es = EnvSampling(st.method, st.blockCount, st.envWidth, st.envHeight, st.alpha, st.log2Span, st.invEnvWidth, st.invEnvHeight);
-  MisSettings ms = MisSettings(st.heuristic, st.sampleCount, st.frame, st.seed);
-  vec4 c = shadeEnvMis(env, table, texels, es, ms, pc.intensity, p, g.g0, g.g1, g.g2, pc.eye.xyz, ray, m.diffuse, m.specular, m.brdf);
+  vec4 c = shadeEnvMis(env, table, texels, st.es, st.ms, pc.intensity, p, g.g0, g.g1, g.g2, pc.eye.xyz, ray, m.diffuse, m.specular, m.brdf);
   if (i < pc.count) color[i] = c;
 }
