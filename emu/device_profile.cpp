@@ -1,6 +1,7 @@
 #include "emu/device_profile.h"
 
 #include <cctype>
+#include <charconv>
 #include <stdexcept>
 #include <string>
 
@@ -11,13 +12,16 @@ const DeviceProfile& lavapipeProfile() {
       "lavapipe", true,
       "Mesa 22.3.6 llvmpipe (LLVM 15, 256-bit), measured with `shadetwin verify texture` and ../shared/facts/lavapipe.md",
       /*filterWeightFracBits=*/0, /*lodFractionBits=*/0, /*unorm8FixedPoint=*/true,
-      /*computeVectorLanes=*/8, /*fragmentVectorW=*/4, /*fragmentVectorH=*/2, DenormMode::Preserve, DenormMode::Flush,
+      /*computeVectorLanes=*/8, /*fragmentVectorW=*/4, /*fragmentVectorH=*/2,
+      // masked lanes sample: verify texture --implicit-lod (docs/DESIGN.md s3, issue 14)
+      DeviceProfile::MaskedFragmentLanes::Sample, DenormMode::Preserve, DenormMode::Flush,
       // verified with `shadetwin verify raster` on the shipped scenes, scenes/clipped.json included
       // (triangles crossing every clip plane)
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
        DeviceProfile::Raster::Clip::DrawModule, /*clipFromNearer=*/true, /*clipViewportFma=*/false,
        /*verified=*/true},
-      DeviceProfile::ImplicitLod::FastLog2PerQuad, /*implicitLodVerified=*/true};  // verify texture --implicit-lod
+      DeviceProfile::ImplicitLod::FastLog2PerQuad, /*implicitLodVerified=*/true,  // verify texture --implicit-lod
+      /*implicitNearestShortcut=*/true};
   return p;
 }
 
@@ -27,12 +31,75 @@ const DeviceProfile& nvidiaProfile() {
       "public documentation only (CUDA programming guide, texture fetching: 9-bit weights with 8 fraction bits); "
       "not yet measured on a GPU",
       /*filterWeightFracBits=*/8, /*lodFractionBits=*/8, /*unorm8FixedPoint=*/false,
-      /*computeVectorLanes=*/1, /*fragmentVectorW=*/1, /*fragmentVectorH=*/1, DenormMode::Preserve, DenormMode::Preserve,
+      /*computeVectorLanes=*/1, /*fragmentVectorW=*/1, /*fragmentVectorH=*/1,
+      DeviceProfile::MaskedFragmentLanes::Skip, DenormMode::Preserve, DenormMode::Preserve,
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
        DeviceProfile::Raster::Clip::GuardBand, /*clipFromNearer=*/false, /*clipViewportFma=*/true,
        /*verified=*/false},
-      DeviceProfile::ImplicitLod::Exact, /*implicitLodVerified=*/false};
+      DeviceProfile::ImplicitLod::Exact, /*implicitLodVerified=*/false, /*implicitNearestShortcut=*/false};
   return p;
+}
+
+namespace {
+bool parseBool(std::string_view key, std::string_view v) {
+  if (v == "true" || v == "1" || v == "on") return true;
+  if (v == "false" || v == "0" || v == "off") return false;
+  throw std::invalid_argument("profile field " + std::string(key) + ": expected true or false, got '" + std::string(v) + "'");
+}
+int parseInt(std::string_view key, std::string_view v, int lo, int hi) {
+  int r = 0;
+  const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), r);
+  if (ec != std::errc() || end != v.data() + v.size() || r < lo || r > hi)
+    throw std::invalid_argument("profile field " + std::string(key) + ": expected an integer in [" + std::to_string(lo) +
+                                ", " + std::to_string(hi) + "], got '" + std::string(v) + "'");
+  return r;
+}
+DenormMode parseDenorm(std::string_view key, std::string_view v) {
+  if (v == "preserve") return DenormMode::Preserve;
+  if (v == "flush") return DenormMode::Flush;
+  throw std::invalid_argument("profile field " + std::string(key) + ": expected preserve or flush, got '" + std::string(v) + "'");
+}
+}  // namespace
+
+void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v) {
+  using M = DeviceProfile::MaskedFragmentLanes;
+  if (key == "maskedFragmentLanes") {
+    if (v != "sample" && v != "skip")
+      throw std::invalid_argument("profile field maskedFragmentLanes: expected sample or skip, got '" + std::string(v) + "'");
+    p.maskedFragmentLanes = v == "sample" ? M::Sample : M::Skip;
+  } else if (key == "implicitNearestShortcut") {
+    p.implicitNearestShortcut = parseBool(key, v);
+  } else if (key == "computeVectorLanes") {
+    p.computeVectorLanes = parseInt(key, v, 1, 64);
+  } else if (key == "fragmentVectorW") {
+    p.fragmentVectorW = parseInt(key, v, 1, 64);
+  } else if (key == "fragmentVectorH") {
+    p.fragmentVectorH = parseInt(key, v, 1, 64);
+  } else if (key == "filterWeightFracBits") {
+    p.filterWeightFracBits = parseInt(key, v, 0, 23);
+  } else if (key == "lodFractionBits") {
+    p.lodFractionBits = parseInt(key, v, 0, 23);
+  } else if (key == "unorm8FixedPoint") {
+    p.unorm8FixedPoint = parseBool(key, v);
+  } else if (key == "denormCompute") {
+    p.denormCompute = parseDenorm(key, v);
+  } else if (key == "denormFragment") {
+    p.denormFragment = parseDenorm(key, v);
+  } else {
+    throw std::invalid_argument("unknown profile field '" + std::string(key) +
+                                "' (known: maskedFragmentLanes, implicitNearestShortcut, computeVectorLanes, "
+                                "fragmentVectorW, fragmentVectorH, filterWeightFracBits, lodFractionBits, "
+                                "unorm8FixedPoint, denormCompute, denormFragment)");
+  }
+  p.verified = false;
+  p.name += " [" + std::string(key) + "=" + std::string(v) + "]";
+}
+
+void setProfileField(DeviceProfile& p, std::string_view assignment) {
+  const size_t eq = assignment.find('=');
+  if (eq == std::string_view::npos)
+    throw std::invalid_argument("profile field: expected KEY=VALUE, got '" + std::string(assignment) + "'");
+  setProfileField(p, assignment.substr(0, eq), assignment.substr(eq + 1));
 }
 
 const DeviceProfile& profileByName(std::string_view name) {

@@ -25,6 +25,13 @@ struct DeviceProfile {
   // computeVectorLanes 1) means per-lane decisions.
   int computeVectorLanes;
   int fragmentVectorW, fragmentVectorH;
+  // Lanes of a fragment vector that its run does not cover (a 4x2 block that a primitive edge splits
+  // is shaded once per primitive, the other primitive's pixels masked; emu::fragmentLanes). Sample
+  // (lavapipe): masked lanes still run the sampler and take part in the run's per-vector decisions;
+  // their inputs are what the stage gives masked lanes (buffer loads return 0), and for texture()
+  // they share their quad's implicit LOD in that run (a quad the run does not cover at all gets the
+  // LOD of its masked lanes' own coordinates). Skip: masked lanes take no part.
+  enum class MaskedFragmentLanes { Sample, Skip } maskedFragmentLanes;
   // Denormals per shader stage.
   DenormMode denormCompute;
   DenormMode denormFragment;
@@ -53,6 +60,12 @@ struct DeviceProfile {
   // Exact: 0.5 * log2(rho^2), per pixel with the stage's derivatives (unverified stand-in).
   enum class ImplicitLod { FastLog2PerQuad, Exact } implicitLod;
   bool implicitLodVerified;
+  // Integer level shortcut of texture() (gallivm's LOD selector, lp_build_ilog2_sqrt): with mip filter
+  // nearest and no post-log2 adjustment (sampler bias 0, minLod <= 0, maxLod >= 15) the level is
+  // (exponent(rho^2) + 1) >> 1 and the min/mag choice rho^2 > 1, instead of rint of the LOD above.
+  // The two differ where rho^2 = 2^(4j+1) (the LOD's tie j + 1/2 rounds to even). Measured with
+  // `verify texture --implicit-lod` (docs/DESIGN.md s3, issue 14).
+  bool implicitNearestShortcut;
   DenormMode denorm(Stage s) const { return s == Stage::Compute ? denormCompute : denormFragment; }
 };
 
@@ -60,6 +73,14 @@ const DeviceProfile& lavapipeProfile();
 const DeviceProfile& nvidiaProfile();
 /// Profile by name ("lavapipe", "nvidia"); throws std::invalid_argument listing the known names.
 const DeviceProfile& profileByName(std::string_view name);
+/// Sets one field by name to an alternative value ("maskedFragmentLanes" = sample|skip,
+/// "implicitNearestShortcut" = true|false, "computeVectorLanes", "fragmentVectorW", "fragmentVectorH" =
+/// integer, "filterWeightFracBits", "lodFractionBits" = integer, "unorm8FixedPoint" = true|false,
+/// "denormCompute", "denormFragment" = preserve|flush), to measure what the profile's choice is worth.
+/// The profile is then marked unverified. Throws std::invalid_argument naming the key or the value.
+void setProfileField(DeviceProfile& p, std::string_view key, std::string_view value);
+/// "KEY=VALUE" form of setProfileField.
+void setProfileField(DeviceProfile& p, std::string_view assignment);
 /// Profile for a Vulkan device name ("llvmpipe ..." -> lavapipe, "NVIDIA ..." -> nvidia).
 const DeviceProfile& profileForDevice(std::string_view deviceName);
 

@@ -1,5 +1,7 @@
 #include "emu/raster.h"
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -373,6 +375,31 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
     stats->quads += quadCount.load();
     stats->fragments += fragCount.load();
   }
+}
+
+}  // namespace emu
+
+namespace emu {
+
+std::vector<FragmentLane> fragmentLanes(const DeviceProfile& dev, uint32_t width, uint32_t height,
+                                        const uint32_t* primitiveOf, uint32_t primitives) {
+  if (primitives == 0 || primitives > 32) throw std::invalid_argument("fragmentLanes: 1 to 32 primitives per target");
+  const uint32_t bw = uint32_t(dev.fragmentVectorW), bh = uint32_t(dev.fragmentVectorH);
+  const uint32_t blocksPerRow = (width + bw - 1) / bw;
+  const size_t pixels = size_t(width) * height;
+  auto blockOf = [&](size_t i) { return uint32_t(i / width / bh) * blocksPerRow + uint32_t(i % width) / bw; };
+  std::vector<FragmentLane> lanes(pixels);
+  for (size_t i = 0; i < pixels; ++i) lanes[i] = {uint32_t(i), blockOf(i) * primitives + primitiveOf[i], primitiveOf[i]};
+  if (dev.maskedFragmentLanes == DeviceProfile::MaskedFragmentLanes::Skip) return lanes;
+  // Which primitives run in each block (one bit per primitive, up to 32).
+  std::vector<uint32_t> runs(size_t(blocksPerRow) * ((height + bh - 1) / bh), 0);
+  for (size_t i = 0; i < pixels; ++i) runs[blockOf(i)] |= 1u << primitiveOf[i];
+  for (size_t i = 0; i < pixels; ++i) {
+    const uint32_t b = blockOf(i), others = runs[b] & ~(1u << primitiveOf[i]);
+    for (uint32_t p = 0; p < primitives; ++p)
+      if (others & (1u << p)) lanes.push_back({uint32_t(i), b * primitives + p, p});
+  }
+  return lanes;
 }
 
 }  // namespace emu

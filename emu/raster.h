@@ -81,6 +81,21 @@ struct RasterStats {
 void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const FragmentFn& fs,
           RasterStats* stats = nullptr);
 
+/// One lane of the fragment stage's SIMD vectors, the grouping of the sampler's per-vector decisions
+/// (emu::textureLodBatch's vectorOf).
+struct FragmentLane {
+  uint32_t pixel;      // y * width + x
+  uint32_t vector;     // the device vector (one run of one block for one primitive)
+  uint32_t primitive;  // the run's primitive; the lane is masked when it is not the pixel's own
+};
+/// The fragment lanes of a width x height target whose pixel i is covered by primitive
+/// primitiveOf[i] < primitives: per the profile, pixels in blocks of fragmentVectorW x fragmentVectorH,
+/// one run (vector block * primitives + p) per primitive p covering part of the block. Lanes 0 .. w*h-1
+/// are the pixels' own (lane i = pixel i); with MaskedFragmentLanes::Sample, every pixel of a block
+/// that p does not cover follows as a masked lane of p's run.
+std::vector<FragmentLane> fragmentLanes(const DeviceProfile& dev, uint32_t width, uint32_t height,
+                                        const uint32_t* primitiveOf, uint32_t primitives);
+
 /// Quad derivatives as the profile takes them: fine (per row / column) or coarse (row 0 / column 0).
 /// v: values at the 4 pixels; returns d/dx and d/dy for each pixel.
 void quadDerivatives(const DeviceProfile& dev, const float v[4], float ddx[4], float ddy[4]);

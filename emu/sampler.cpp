@@ -561,16 +561,23 @@ Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32
   return tex.loadFloat(uint32_t(level), uint32_t(layer), uint32_t(x), uint32_t(y));
 }
 
-float implicitLod(const Texture& tex, const DeviceProfile& dev, const float s[4], const float t[4]) {
+float implicitLod(const Texture& tex, const SamplerDesc& sd, const DeviceProfile& dev, const float s[4], const float t[4]) {
   const float W = float(tex.width()), H = float(tex.height());
   const float dsdx = (s[1] - s[0]) * W, dsdy = (s[2] - s[0]) * W;
   const float dtdx = (t[1] - t[0]) * H, dtdy = (t[2] - t[0]) * H;
   const float rx = dsdx * dsdx + dtdx * dtdx, ry = dsdy * dsdy + dtdy * dtdy;  // separate mul, add
   const float rho2 = rx > ry ? rx : ry;
-  if (dev.implicitLod == DeviceProfile::ImplicitLod::Exact) return 0.5f * std::log2(rho2);
-  // gallivm's fast log2: (biased exponent - 127 - 1) + mantissa with the exponent bits set to 1.0.
   uint32_t bits;
   std::memcpy(&bits, &rho2, 4);
+  // gallivm's LOD selector skips the float LOD when nothing follows the log2 (Mesa's apply_min_lod is
+  // minLod > 0, apply_max_lod maxLod < PIPE_MAX_TEXTURE_LEVELS - 1 = 15).
+  if (dev.implicitNearestShortcut && sd.mipmapMode == MipmapMode::Nearest && sd.lodBias == 0.0f &&
+      !(sd.minLod > 0.0f) && !(sd.maxLod < 15.0f)) {
+    const int32_t level = (int32_t((bits >> 23) & 0xffu) - 126) >> 1;  // lp_build_ilog2_sqrt
+    return level != 0 ? float(level) : rho2 > 1.0f ? 0.25f : 0.0f;
+  }
+  if (dev.implicitLod == DeviceProfile::ImplicitLod::Exact) return 0.5f * std::log2(rho2);
+  // gallivm's fast log2: (biased exponent - 127 - 1) + mantissa with the exponent bits set to 1.0.
   const int32_t e = int32_t((bits >> 23) & 0xffu) - 127 - 1;
   const uint32_t mbits = (bits & 0x007fffffu) | 0x3f800000u;
   float m;

@@ -37,8 +37,12 @@ const char* addressName(AddressMode a);
 Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, float layer, float lod);
 /// The LOD texture() derives for one 2x2 quad (pixels 0 top-left, 1 top-right, 2 bottom-left,
 /// 3 bottom-right) from its normalized coordinates s, t, before sampler bias and min/max clamps (it
-/// then goes through them like an explicit LOD). Per the profile's implicitLod model.
-float implicitLod(const Texture& tex, const DeviceProfile& dev, const float s[4], const float t[4]);
+/// then goes through them like an explicit LOD). Per the profile's implicitLod model. Where the
+/// profile's implicitNearestShortcut applies to sampler s, the value returned is the equivalent
+/// explicit LOD: the shortcut's integer level, and 0.25 for level 0 when rho^2 > 1 (minified).
+/// (Not modelled: rho^2 = NaN there, level 64 but magnified, with mixed mag/min filters.)
+float implicitLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, const float su[4],
+                  const float tv[4]);
 
 /// texelFetch(sampler2DArray, ivec3(x, y, layer), level); coordinates must be in range.
 Texel4 texelFetch(const Texture& tex, int32_t x, int32_t y, int32_t layer, int32_t level);

@@ -254,6 +254,38 @@ TEST(Raster, ClipperDiscardsNonFiniteAndOutsideTriangles) {
   EXPECT_EQ(st.fragments, 0u);
 }
 
+TEST(Raster, FragmentLanesSplitBlocksRunOncePerPrimitiveWithMaskedLanes) {
+  // 8 x 4 target, lavapipe's 4 x 2 blocks, two primitives split along a staircase: block (0, 0) all
+  // primitive 0, block (1, 0) split, row 2-3 blocks all primitive 1.
+  const uint32_t w = 8, h = 4;
+  std::vector<uint32_t> prim(w * h, 0);
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) prim[y * w + x] = (y >= 2 || (y == 0 && x >= 6)) ? 1u : 0u;
+  const auto& lp = emu::lavapipeProfile();
+  const std::vector<emu::FragmentLane> lanes = emu::fragmentLanes(lp, w, h, prim.data(), 2);
+  ASSERT_EQ(lanes.size(), size_t(w * h + 8));  // block (1, 0): its 8 pixels again, masked, in the other run
+  for (uint32_t i = 0; i < w * h; ++i) {
+    EXPECT_EQ(lanes[i].pixel, i);
+    EXPECT_EQ(lanes[i].primitive, prim[i]);
+    const uint32_t block = (i / w / 2) * 2 + (i % w) / 4;
+    EXPECT_EQ(lanes[i].vector, block * 2 + prim[i]) << i;
+  }
+  std::vector<int> runLanes(8, 0);
+  for (const auto& l : lanes) ++runLanes[l.vector];
+  EXPECT_EQ(runLanes[0 * 2 + 0], 8);  // block 0, primitive 0 only
+  EXPECT_EQ(runLanes[1 * 2 + 0], 8);  // block 1: 6 own + 2 masked lanes of primitive 1's pixels
+  EXPECT_EQ(runLanes[1 * 2 + 1], 8);  // 2 own + 6 masked
+  for (size_t k = w * h; k < lanes.size(); ++k) {
+    EXPECT_NE(lanes[k].primitive, prim[lanes[k].pixel]);  // a masked lane runs in the other primitive's vector
+    EXPECT_EQ(lanes[k].vector / 2, 1u);
+  }
+  emu::DeviceProfile skip = lp;
+  emu::setProfileField(skip, "maskedFragmentLanes=skip");
+  EXPECT_EQ(emu::fragmentLanes(skip, w, h, prim.data(), 2).size(), size_t(w * h));
+  EXPECT_THROW(emu::fragmentLanes(lp, w, h, prim.data(), 0), std::invalid_argument);
+  EXPECT_THROW(emu::fragmentLanes(lp, w, h, prim.data(), 33), std::invalid_argument);
+}
+
 TEST(GBufferPass, ThreadCountIndependent) {
   shadetwin::Scene s = shadetwin::loadScene(std::string(SHADETWIN_SOURCE_DIR) + "/scenes/spheres.json");
   s.width = 256, s.height = 96;

@@ -71,7 +71,8 @@ TEST(Sampler, ImplicitLodFastLog2) {
   auto quad = [&](float kx, float ky, const emu::DeviceProfile& dev) {
     const float s[4] = {0.25f, 0.25f + kx / 64.0f, 0.25f, 0.25f + kx / 64.0f};
     const float tt[4] = {0.5f, 0.5f, 0.5f + ky / 32.0f, 0.5f + ky / 32.0f};
-    return emu::implicitLod(t, dev, s, tt);
+    emu::SamplerDesc sd;  // mip linear: the float LOD
+    return emu::implicitLod(t, sd, dev, s, tt);
   };
   const auto& lp = emu::lavapipeProfile();
   // rho^2 = 1, 4, 16: powers of two are exact: lod 0, 1, 2.
@@ -150,6 +151,82 @@ TEST(DeviceProfile, LookupAndUnknownNames) {
   EXPECT_THROW(emu::profileByName("voodoo2"), std::invalid_argument);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Fragment), emu::DenormMode::Flush);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Compute), emu::DenormMode::Preserve);
+}
+
+TEST(DeviceProfile, FieldsCanBeSetToTheirAlternatives) {
+  emu::DeviceProfile p = emu::lavapipeProfile();
+  emu::setProfileField(p, "maskedFragmentLanes=skip");
+  EXPECT_EQ(p.maskedFragmentLanes, emu::DeviceProfile::MaskedFragmentLanes::Skip);
+  EXPECT_FALSE(p.verified);  // an alternative is not what was measured
+  EXPECT_NE(p.name.find("maskedFragmentLanes=skip"), std::string::npos);
+  emu::setProfileField(p, "implicitNearestShortcut", "false");
+  EXPECT_FALSE(p.implicitNearestShortcut);
+  emu::setProfileField(p, "computeVectorLanes=4");
+  EXPECT_EQ(p.computeVectorLanes, 4);
+  emu::setProfileField(p, "denormFragment=preserve");
+  EXPECT_EQ(p.denormFragment, emu::DenormMode::Preserve);
+  auto message = [&](const char* kv) {
+    try {
+      emu::setProfileField(p, kv);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("voodoo=1").find("unknown profile field 'voodoo'"), std::string::npos);
+  EXPECT_NE(message("computeVectorLanes=0").find("expected an integer in [1, 64]"), std::string::npos);
+  EXPECT_NE(message("computeVectorLanes=8x").find("got '8x'"), std::string::npos);
+  EXPECT_NE(message("implicitNearestShortcut").find("expected KEY=VALUE"), std::string::npos);
+  EXPECT_NE(message("maskedFragmentLanes=maybe").find("expected sample or skip"), std::string::npos);
+  EXPECT_EQ(emu::lavapipeProfile().maskedFragmentLanes, emu::DeviceProfile::MaskedFragmentLanes::Sample);
+}
+
+TEST(Sampler, ImplicitNearestShortcutTakesTheLevelFromTheExponent) {
+  // gallivm's lp_build_ilog2_sqrt: with mip nearest and nothing after the log2, level =
+  // (exponent(rho^2) + 1) >> 1; the float path rounds 0.5 fastlog2(rho^2) to even. A 64 x 64 texture
+  // and quads stepping a texels in s and b texels in t per pixel in x: rho^2 = a^2 + b^2.
+  emu::Texture t(emu::Format::R32F, 64, 64, 1, {std::vector<uint8_t>(64 * 64 * 4)});
+  auto lod = [&](float a, float b, const emu::SamplerDesc& sd, const emu::DeviceProfile& dev) {
+    const float s[4] = {0.25f, 0.25f + a / 64.0f, 0.25f, 0.25f + a / 64.0f};
+    const float tt[4] = {0.5f, 0.5f + b / 64.0f, 0.5f, 0.5f + b / 64.0f};
+    return emu::implicitLod(t, sd, dev, s, tt);
+  };
+  const auto& lp = emu::lavapipeProfile();
+  emu::DeviceProfile alt = lp;
+  emu::setProfileField(alt, "implicitNearestShortcut=false");
+  emu::SamplerDesc nearest;
+  nearest.mipmapMode = emu::MipmapMode::Nearest;
+  // Ties of the float LOD, rho^2 = 2^(2k+1): rint(k + 1/2) goes to even, the shortcut up.
+  EXPECT_EQ(lod(1, 1, nearest, lp), 1.0f);     // rho^2 = 2: LOD 0.5, shortcut level 1
+  EXPECT_EQ(lod(1, 1, nearest, alt), 0.5f);    // the float path: rint -> level 0
+  EXPECT_EQ(lod(4, 4, nearest, lp), 3.0f);     // rho^2 = 32: LOD 2.5 -> shortcut 3, rint 2
+  EXPECT_EQ(lod(4, 4, nearest, alt), 2.5f);
+  EXPECT_EQ(lod(2, 2, nearest, lp), 2.0f);     // rho^2 = 8: LOD 1.5 -> both 2
+  EXPECT_EQ(lod(0.25f, 0.25f, nearest, lp), -1.0f);  // rho^2 = 1/8: LOD -1.5 -> shortcut -1
+  // Level 0: minified (rho^2 > 1) or not, as the min/mag choice of the shortcut.
+  EXPECT_EQ(lod(1.2f, 0, nearest, lp), 0.25f);
+  EXPECT_EQ(lod(1, 0, nearest, lp), 0.0f);
+  EXPECT_EQ(lod(0.8f, 0, nearest, lp), 0.0f);
+  // Anything after the log2 (bias, minLod > 0, maxLod < 15) or mip linear: the float LOD.
+  emu::SamplerDesc biased = nearest, minClamped = nearest, maxClamped = nearest, linear;
+  biased.lodBias = 0.75f;
+  minClamped.minLod = 0.5f;
+  maxClamped.maxLod = 14.0f;
+  for (const auto* sd : {&biased, &minClamped, &maxClamped, &linear}) EXPECT_EQ(lod(1, 1, *sd, lp), 0.5f);
+  maxClamped.maxLod = 15.0f;
+  EXPECT_EQ(lod(1, 1, maxClamped, lp), 1.0f);
+  // Through the sampler: the level texture() reads.
+  std::vector<std::vector<uint8_t>> levels;
+  for (uint32_t l = 0; l < 7; ++l) {
+    const uint32_t w = 64u >> l;
+    std::vector<float> v(size_t(w) * w, float(l));
+    levels.emplace_back(v.size() * 4);
+    std::memcpy(levels.back().data(), v.data(), levels.back().size());
+  }
+  emu::Texture chain(emu::Format::R32F, 64, 64, 1, levels);
+  nearest.minFilter = nearest.magFilter = emu::Filter::Nearest;
+  EXPECT_EQ(emu::textureLod(chain, nearest, lp, 0.3f, 0.3f, 0, lod(4, 4, nearest, lp)).r, 3.0f);
+  EXPECT_EQ(emu::textureLod(chain, nearest, alt, 0.3f, 0.3f, 0, lod(4, 4, nearest, alt)).r, 2.0f);
 }
 
 // ---- batch path (8 lanes + TBB) against the one-lane model ----

@@ -73,7 +73,7 @@ V4<emu::F32<N>> textureImplicitLanes(const Sampler2D& s, emu::F32<N> u, emu::F32
   emu::F32<N> lod;
   for (int g = 0; g < N; g += 4) {
     const float su[4] = {u[g], u[g + 1], u[g + 2], u[g + 3]}, sv[4] = {v[g], v[g + 1], v[g + 2], v[g + 3]};
-    const float l = emu::implicitLod(*s.tex, *s.dev, su, sv);
+    const float l = emu::implicitLod(*s.tex, s.desc, *s.dev, su, sv);
     for (int i = g; i < g + 4; ++i) lod.set(i, l);
   }
   Sampler2D perQuad = s;
