@@ -5,8 +5,8 @@
 #include <sstream>
 #include <string>
 
-#include "render/env_kdtree.h"
-#include "render/render.h"
+#include "inputs/env_kdtree.h"
+#include "inputs/environment.h"
 
 namespace {
 std::vector<double> weights(const std::string& name, int scale, uint32_t& W, uint32_t& H) {

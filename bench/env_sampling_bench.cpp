@@ -9,10 +9,10 @@
 #include <string>
 
 #include "emu/device_profile.h"
-#include "render/env_sampling.h"
-#include "render/gbuffer.h"
-#include "render/render.h"
-#include "shade/instantiate.h"
+#include "inputs/env_sampling.h"
+#include "passes/shade.h"
+#include "inputs/environment.h"
+#include "lanes/instantiate.h"
 
 namespace {
 const emu::Texture& city() {

@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "shade/kernels.h"
+#include "lanes/kernels.h"
 
 namespace {
 std::vector<float>& inputs() {

@@ -10,11 +10,11 @@
 #include <string>
 
 #include "op_count.h"
-#include "render/gbuffer.h"
-#include "render/material.h"
-#include "render/render.h"
-#include "render/shade_inputs.h"
-#include "shade/instantiate.h"
+#include "passes/shade.h"
+#include "inputs/material.h"
+#include "inputs/environment.h"
+#include "inputs/shade_inputs.h"
+#include "lanes/instantiate.h"
 #include "scene/scene.h"
 
 // The shared shading source once more, with counted 8-lane types (as instantiate.h does per lane type).
@@ -80,7 +80,7 @@ CV4 lanes4(const GBuffer& g, size_t first, int at) {
 }
 CV3 splat(const float v[3]) { return CV3(CF(v[0]), CF(v[1]), CF(v[2])); }
 
-// The FIS pass of render/passes.cpp (shadeFisEmu) with counted lanes: vectors of 8 consecutive pixels.
+// The FIS pass of passes/shade_emu.cpp (shadeFisEmu) with counted lanes: vectors of 8 consecutive pixels.
 // Gathering the G-buffer and material records (memory loads on a GPU) is not counted.
 void countFisPass(const Setup& s) {
   const Scene& scene = s.scene;
@@ -145,7 +145,7 @@ void BM_FisOpCount(benchmark::State& state) {
 }
 BENCHMARK(BM_FisOpCount)->Unit(benchmark::kMillisecond)->Iterations(1);
 
-// The emulated pass itself (TBB over all cores, as render/bench run it).
+// The emulated pass itself (TBB over all cores, as shadetwin render / bench run it).
 void BM_FisPassEmu(benchmark::State& state) {
   const Setup& s = setup();
   std::vector<float> out;

@@ -10,9 +10,9 @@
 #include <cstdint>
 
 #include "emu/lanes.h"
-#include "shade/native_exact.h"
-#include "shade/sampler_bridge.h"
-#include "shade/vec.h"
+#include "lanes/native_exact.h"
+#include "lanes/sampler_bridge.h"
+#include "lanes/vec.h"
 
 namespace opcount {
 
@@ -147,7 +147,7 @@ V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::
 }  // namespace shadetwin::shade
 
 // The counted build counts the portable recurrences (what a GPU runs), not the emulator's native
-// fast paths (shade/native_exact.h).
+// fast paths (lanes/native_exact.h).
 namespace shadetwin::shade {
 template <int N>
 inline NativeResult<opcount::F<N>> nativeDiv(opcount::F<N>, opcount::F<N>) { return {false, opcount::F<N>(0.0f)}; }

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "shade/kernels.h"
+#include "lanes/kernels.h"
 #include "vk/context.h"
 
 namespace {

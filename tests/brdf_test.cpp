@@ -14,8 +14,8 @@
 
 #include "reference/reference_brdf.h"
 #include "chi_square.h"
-#include "shade/instantiate.h"
-#include "verify/verify.h"
+#include "lanes/instantiate.h"
+#include "cli/verify/verify.h"
 
 namespace sc = shadetwin::shade::scalar;
 namespace x8 = shadetwin::shade::x8;

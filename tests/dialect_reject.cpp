@@ -1,5 +1,5 @@
 // Compile-only checks (ctest): each CASE_ must fail to compile; with no CASE_ it must compile.
-#include "shade/instantiate.h"
+#include "lanes/instantiate.h"
 
 namespace shadetwin::shade::x8 {
 inline Float probe(Float a, Float b) {

@@ -1,4 +1,4 @@
-// Kd-tree partition of the environment (render/env_kdtree.h, issue 5 item 1): a partition of the map,
+// Kd-tree partition of the environment (inputs/env_kdtree.h, issue 5 item 1): a partition of the map,
 // the greedy split is the best cut, and the hard cases of the issue: a constant environment, a single
 // bright pixel, blocks of one pixel, n = 1, negative texels, the sun of city.exr.
 #include <gtest/gtest.h>
@@ -7,8 +7,8 @@
 #include <random>
 #include <sstream>
 
-#include "render/env_kdtree.h"
-#include "render/render.h"
+#include "inputs/env_kdtree.h"
+#include "inputs/environment.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The directional lights of technique "env" (render/env_lights.cpp): weights of a constant
+// The directional lights of technique "env" (inputs/env_lights.cpp): weights of a constant
 // environment, a single bright texel, an empty environment; and the env shading pass under a
 // constant environment (diffuse only: kd L up to the lights' quadrature error).
 #include <gtest/gtest.h>
@@ -8,11 +8,11 @@
 #include <sstream>
 
 #include "emu/device_profile.h"
-#include "mips.h"
-#include "render/env_lights.h"
-#include "render/gbuffer.h"
+#include "passes/mips.h"
+#include "inputs/env_lights.h"
+#include "passes/shade.h"
 #include "scene/scene.h"
-#include "shade/instantiate.h"
+#include "lanes/instantiate.h"
 
 namespace {
 emu::Texture envOf(const std::vector<float>& level0, uint32_t w, uint32_t h) {

@@ -1,4 +1,4 @@
-// The device's environment samplers (shade/env_sampling.h with render/env_sampling.h's tables): for the
+// The device's environment samplers (shade/env_sampling.h with inputs/env_sampling.h's tables): for the
 // kd-tree (fitted block distribution), the alias table over the same blocks and the inversion method,
 //   - samples pass a chi-square test against the texel probabilities the method promises, computed
 //     independently in double (and the fitted distribution fails against the exact one: the test has
@@ -7,7 +7,7 @@
 //   - the pdf integrates to 1 over the sphere,
 //   - the scalar and the 8-lane builds give the same bits,
 //   - hard cases: an environment without light, one bright pixel, n = 1, city's sun, negative texels.
-#include "render/env_sampling.h"
+#include "inputs/env_sampling.h"
 
 #include <gtest/gtest.h>
 
@@ -17,10 +17,10 @@
 #include <sstream>
 
 #include "emu/device_profile.h"
-#include "render/gbuffer.h"
-#include "render/render.h"
+#include "passes/shade.h"
+#include "inputs/environment.h"
 #include "chi_square.h"
-#include "shade/instantiate.h"
+#include "lanes/instantiate.h"
 
 namespace {
 namespace sc = shadetwin::shade::scalar;
@@ -231,7 +231,7 @@ TEST(EnvSampling, SingleBrightPixelAndOneBlock) {
   for (uint32_t m : kMethods) {
     const Bound b = bind(env, m, 64);
     const auto h = histogram(b, n, 4);
-    // Weights are the 3 x 3 neighbourhood maxima (render/env_kdtree.h): the pixel and its 8 neighbours
+    // Weights are the 3 x 3 neighbourhood maxima (inputs/env_kdtree.h): the pixel and its 8 neighbours
     // hold 99.9% of the weight; the alias table and inversion draw them that often, the kd-tree as
     // often as its fitted distribution gives their blocks.
     const auto p = promisedTexelProbabilities(env, m, 64, m == sc::kEnvKdTree);

@@ -4,16 +4,16 @@
 #include <gtest/gtest.h>
 
 #include "emu/fpenv.h"
-#include "shade/instantiate.h"
+#include "lanes/instantiate.h"
 
 #include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
 
-#include "shade/instantiate.h"
-#include "shade/kernels.h"
-#include "verify/verify.h"
+#include "lanes/instantiate.h"
+#include "lanes/kernels.h"
+#include "cli/verify/verify.h"
 
 namespace sc = shadetwin::shade::scalar;
 using shadetwin::ulpDistance;
@@ -37,7 +37,7 @@ TEST(ExactMath, DivIsCorrectlyRoundedOnAnyBits) {
 }
 
 TEST(ExactMath, NativeFastPathsGiveTheRecurrenceBits) {
-  // The C++ builds divide / take square roots natively when every lane is normal (shade/native_exact.h).
+  // The C++ builds divide / take square roots natively when every lane is normal (lanes/native_exact.h).
   // Vectors of 8 whose lanes are random normals, or mixed with one special lane (zero, subnormal, inf,
   // NaN: the whole vector takes the recurrence), in the default mode and under FTZ/DAZ (a flushing
   // stage): every lane equals the correctly rounded result, subnormal quotients included.

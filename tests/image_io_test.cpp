@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <fstream>
 
-#include "image_io.h"
+#include "util/image_io.h"
 
 namespace {
 std::string asset(const char* name) { return std::string(SHADETWIN_SOURCE_DIR) + "/assets/hdri/" + name + ".exr"; }

@@ -1,4 +1,4 @@
-// Materials (render/material.h, shade/material.h): the record layout the kernels read, material maps
+// Materials (inputs/material.h, shade/material.h): the record layout the kernels read, material maps
 // as texture-array layers, the maps' LOD against the Vulkan scale-factor formula, and spatially
 // varying materials against the reference renderer; Lafortune lobes from scene files.
 #include <gtest/gtest.h>
@@ -11,13 +11,13 @@
 
 #include "emu/device_profile.h"
 #include "emu/format.h"
-#include "image_io.h"
-#include "mips.h"
-#include "render/gbuffer.h"
-#include "render/material.h"
-#include "render/render.h"
-#include "render/shade_inputs.h"
-#include "shade/instantiate.h"
+#include "util/image_io.h"
+#include "passes/mips.h"
+#include "passes/shade.h"
+#include "inputs/material.h"
+#include "inputs/environment.h"
+#include "inputs/shade_inputs.h"
+#include "lanes/instantiate.h"
 #include "scene/scene.h"
 
 namespace {

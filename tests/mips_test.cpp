@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "mips.h"
+#include "passes/mips.h"
 
 using shadetwin::mipChainCpu;
 

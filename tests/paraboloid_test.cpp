@@ -1,4 +1,4 @@
-// Dual-paraboloid atlas (src/shade/paraboloid.h, src/render/paraboloid.*): the mapping and its
+// Dual-paraboloid atlas (src/shade/paraboloid.h, src/inputs/paraboloid.*): the mapping and its
 // inverse, the Jacobian r(z) = 4 b^2 (1 + |z|)^2 against the measured solid angle of texels, the
 // seam layout, and the resampling of a constant environment. Emulator-vs-GPU bits: ctest
 // verify_paraboloid_*.
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "emu/device_profile.h"
-#include "mips.h"
-#include "render/paraboloid.h"
-#include "shade/instantiate.h"
+#include "passes/mips.h"
+#include "inputs/paraboloid.h"
+#include "lanes/instantiate.h"
 
 namespace sc = shadetwin::shade::scalar;
 using V3f = shadetwin::shade::V3<float>;

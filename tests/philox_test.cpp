@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "shade/instantiate.h"
+#include "lanes/instantiate.h"
 
 namespace {
 namespace sc = shadetwin::shade::scalar;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "emu/raster.h"
-#include "render/gbuffer.h"
+#include "passes/gbuffer.h"
 #include "scene/scene.h"
 
 namespace {

@@ -11,10 +11,10 @@
 #include <random>
 #include <sstream>
 
-#include "compare.h"
+#include "util/compare.h"
 #include "reference/reference.h"
 #include "reference/reference_brdf.h"
-#include "render/render.h"
+#include "inputs/environment.h"
 #include "scene/scene.h"
 
 namespace {

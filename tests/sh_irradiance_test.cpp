@@ -1,4 +1,4 @@
-// Order-3 SH irradiance (shade/sh_irradiance.h, render/sh_irradiance.cpp): the projection against
+// Order-3 SH irradiance (shade/sh_irradiance.h, inputs/sh_irradiance.cpp): the projection against
 // a double-precision sum of the same texels, a constant environment (E/pi = L), the SH
 // approximation against brute-force irradiance on the real maps (Ramamoorthi & Hanrahan's error
 // claim), thread-count independence, odd sizes, and the fis pass's diffuse term.
@@ -14,10 +14,10 @@
 #include <tbb/global_control.h>
 
 #include "emu/device_profile.h"
-#include "mips.h"
-#include "render/gbuffer.h"
-#include "render/render.h"
-#include "render/sh_irradiance.h"
+#include "passes/mips.h"
+#include "passes/gbuffer.h"
+#include "inputs/environment.h"
+#include "inputs/sh_irradiance.h"
 #include "scene/scene.h"
 
 namespace {

@@ -9,9 +9,9 @@
 #include <random>
 
 #include "emu/device_profile.h"
-#include "render/env_sampling.h"
-#include "render/gbuffer.h"
-#include "shade/instantiate.h"
+#include "inputs/env_sampling.h"
+#include "passes/shade.h"
+#include "lanes/instantiate.h"
 
 namespace {
 namespace sc = shadetwin::shade::scalar;

@@ -1,14 +1,14 @@
-// Technique inputs across frames (render/shade_inputs.h ShadeInputsCache): rebuilt when the
+// Technique inputs across frames (inputs/shade_inputs.h ShadeInputsCache): rebuilt when the
 // environment changes, reused when it does not, and a rebuild equals a fresh build; the environment
-// turn of `render --env-rotate` (render/render.h) moves whole texel columns.
+// turn of `render --env-rotate` (cli/render.h) moves whole texel columns.
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <sstream>
 
 #include "emu/device_profile.h"
-#include "render/render.h"
-#include "render/shade_inputs.h"
+#include "inputs/environment.h"
+#include "inputs/shade_inputs.h"
 #include "scene/scene.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// Shadow-map passes on the emulator (src/render/shadow.cpp): light frames, coverage of the bounding
+// Shadow-map passes on the emulator (src/passes/shadow.cpp): light frames, coverage of the bounding
 // sphere, analytic depth of a sphere's pole, thread-count independence. The emulator-vs-lavapipe
 // comparison is the ctest `verify_shadow_*` (shadetwin verify shadow).
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "render/shadow.h"
+#include "passes/shadow.h"
 #include "scene/scene.h"
 
 namespace {

@@ -8,7 +8,7 @@
 #include "emu/format.h"
 #include "emu/sampler.h"
 #include "emu/texture.h"
-#include "shade/instantiate.h"
+#include "lanes/instantiate.h"
 
 namespace {
 std::vector<uint8_t> floats(std::initializer_list<float> v) {

@@ -4,7 +4,7 @@
 
 #include <sstream>
 
-#include "verify/verify.h"
+#include "cli/verify/verify.h"
 #include "vk/context.h"
 
 TEST(VkContext, UnknownDeviceListsAvailableOnes) {

@@ -15,12 +15,12 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "image_io.h"
+#include "util/image_io.h"
 #include "reference/reference_brdf.h"
-#include "render/env_kdtree.h"
-#include "render/material.h"
-#include "render/gbuffer.h"
-#include "render/render.h"
+#include "inputs/env_kdtree.h"
+#include "inputs/material.h"
+#include "passes/shade.h"
+#include "inputs/environment.h"
 #include "util/progress.h"
 
 namespace shadetwin {
@@ -52,7 +52,7 @@ class Environment {
   Environment(const EnvImage& img, double intensity) : img_(img), intensity_(intensity) {
     const uint32_t W = img.width, H = img.height;
     if (!W || !H || !img.rgba) throw std::invalid_argument("reference: empty environment image");
-    // Texel weights: render/env_kdtree.h's envSamplingWeights (the largest non-negative luminance of
+    // Texel weights: inputs/env_kdtree.h's envSamplingWeights (the largest non-negative luminance of
     // the texel's 3 x 3 neighbourhood, times sin(theta) of the row centre: the pdf then bounds the
     // bilinear radiance, no fireflies next to the sun), plus a floor of 1e-4 of the mean so every
     // direction keeps a positive pdf.

@@ -1,12 +1,12 @@
 // Environment-map importance sampling on the device (issue 5): three samplers of the equirectangular
 // map with their solid-angle pdfs, sampleX / xPdf pairs in shared code (the host builds the tables:
-// render/env_sampling.h). All three draw a texel region and then a uniform point in it in (u, v), so
+// inputs/env_sampling.h). All three draw a texel region and then a uniform point in it in (u, v), so
 //   pdf(omega) = P_region / (area_uv(region) 2 pi^2 sin theta)        (d omega = 2 pi^2 sin theta du dv,
 // u = phi / 2 pi, v = theta / pi, equirectangular; PBRT-v3 s14.2.4). The tables store
 // P_region / area_uv / (2 pi^2) per region ("uv pdf"), so a pdf costs one division by sin theta.
 //
 // kEnvKdTree  Ergun, Kurt & Ozturk, "Real-time kd-tree based importance sampling of environment maps"
-//             (SCCG 2012): the kd-tree blocks (render/env_kdtree.h) ranked by mean, rank k drawn from the
+//             (SCCG 2012): the kd-tree blocks (inputs/env_kdtree.h) ranked by mean, rank k drawn from the
 //             fitted density p(x) = 1/(log(1 + n/alpha)(alpha + x)) by x = alpha((1 + n/alpha)^xi - 1)
 //             = alpha (2^(xi log2(1 + n/alpha)) - 1), k = floor(x): O(1), one table lookup. The pdf of an
 //             arbitrary direction (MIS) is O(1) too: a texel -> rank texture, then the rank's record.
@@ -28,7 +28,7 @@ const uint kEnvKdTree = 0u;
 const uint kEnvAlias = 1u;
 const uint kEnvInversion = 2u;
 
-// Uniform settings of a sampler (host: render/env_sampling.h envSamplingUniforms).
+// Uniform settings of a sampler (host: inputs/env_sampling.h envSamplingUniforms).
 struct EnvSampling {
   uint method;     // kEnv*
   uint count;      // blocks (kd-tree, alias)
@@ -181,7 +181,7 @@ Float envPdf(Sampler2D table, Sampler2D texels, EnvSampling s, Float3 dir) {
   return p;
 }
 
-// Throughput probe (render/env_sampling_speed.cpp, src/shaders/env_sampling_speed.comp): n directions
+// Throughput probe (inputs/env_sampling_speed.cpp, src/shaders/env_sampling_speed.comp): n directions
 // of stream `index` drawn and their pdfs looked up; returns sum(pdf + dir.x) so no work is dead.
 Float envSamplingChecksum(Sampler2D table, Sampler2D texels, EnvSampling s, Uint index, uint n, uint seed) {
   PRECISE Float sum = Float(0.0f);

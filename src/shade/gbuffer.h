@@ -1,5 +1,5 @@
 // G-buffer pass (vertex and fragment halves), shared by the Vulkan build (src/shaders/gbuffer.vert,
-// gbuffer.frag) and the emulator (src/render/gbuffer.cpp). Matrices arrive as columns; every
+// gbuffer.frag) and the emulator (src/passes/gbuffer.cpp). Matrices arrive as columns; every
 // product is an explicit, ordered sum of per-column products, so both builds round identically.
 //
 // Layout of the four RGBA32F attachments (docs/DESIGN.md "G-buffer"):

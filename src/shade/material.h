@@ -1,7 +1,7 @@
 // Surface materials of the sampling techniques (fis and its baselines, env): a material record's
 // constants, optionally modulated by material maps, give a pixel its diffuse and specular colours and
 // its BRDF parameters. Shared by the GLSL entry points (shade_fis.comp, shade_env.comp) and the
-// emulator (render/passes.cpp); the record layout is render/material.h's MaterialGpu.
+// emulator (passes/shade_emu.cpp); the record layout is inputs/material.h's MaterialGpu.
 //
 // Maps: all of a scene's maps are layers of one 2D array texture (RGBA32F, full MIP chain, repeat
 // addressing, trilinear). A record names a map by layer + 1 (0: no map). Lookups use textureLod at

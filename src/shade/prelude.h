@@ -1,5 +1,5 @@
 // The shadetwin shading dialect: one source, compiled as GLSL 4.50 (glslc) and as C++ (once per lane
-// type, see src/shade/instantiate.h). Shared shading headers include nothing else.
+// type, see src/lanes/instantiate.h). Shared shading headers include nothing else.
 //
 // Rules of the dialect (docs/DESIGN.md, "The dialect"):
 //   - Per-lane values: Float, Float2, Float3, Float4, Int, Uint, Mask. Uniform values (loop counters,
@@ -34,7 +34,7 @@
 #define Sampler2DArray sampler2DArray
 
 // BRDF kinds the scene's materials use (bit k set: kind k, shade/brdf.h), a specialization constant
-// the host sets per pipeline (render/shade_vk.cpp), so the code of kinds no material has is not
+// the host sets per pipeline (passes/shade_vk.cpp), so the code of kinds no material has is not
 // compiled at all (a GPU runs both sides of a divergent branch under a mask; lavapipe does for every
 // branch). Default: every kind. The C++ builds skip absent kinds at run time (IF_ANY) instead.
 layout(constant_id = 0) const uint kSceneBrdfKinds = 0xffffffffu;
@@ -48,7 +48,7 @@ int select(bool m, int a, int b) { return mix(b, a, m); }
 uint select(bool m, uint a, uint b) { return mix(b, a, m); }
 bool select(bool m, bool a, bool b) { return mix(b, a, m); }
 // Exact-math fast paths: the C++ builds use the CPU's IEEE operation where it gives the same bits
-// (src/shade/native_exact.h); a GPU always runs the portable recurrence.
+// (src/lanes/native_exact.h); a GPU always runs the portable recurrence.
 struct NativeResult { bool ok; float value; };
 NativeResult nativeDiv(float a, float b) { return NativeResult(false, 0.0f); }
 NativeResult nativeSqrt(float x) { return NativeResult(false, 0.0f); }

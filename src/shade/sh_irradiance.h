@@ -23,7 +23,7 @@
 //   2. one invocation per coefficient k: the H row sums reduced by a pairwise tree, stride
 //      s = 1, 2, 4, ...: row[i] += row[i + s] for i = 0, 2s, 4s, ... while i + s < H (shAdd3),
 //      then the band scale. The tree is written out in the reduce entry points (GLSL
-//      src/shaders/sh_reduce.comp, C++ render/sh_irradiance.cpp), both tested for identical bits.
+//      src/shaders/sh_reduce.comp, C++ inputs/sh_irradiance.cpp), both tested for identical bits.
 
 const float kShY0 = 0.282094792f;  // 1 / (2 sqrt(pi))
 const float kShY1 = 0.488602512f;  // sqrt(3 / (4 pi))

@@ -2,7 +2,7 @@
 // "env" of the FIS error study (Colbert & Krivanek 2008 compare FIS against it, sec. 5; the
 // lights are N samples of the environment's luminance, Agarwal et al. 2003 style).
 //
-// The host (render/env_lights.cpp) draws N directions w_j from the piecewise-constant pdf of the
+// The host (inputs/env_lights.cpp) draws N directions w_j from the piecewise-constant pdf of the
 // equirectangular map (texel probability P_t proportional to max(luminance, 0) sin(theta_t),
 // solid-angle pdf p_j = P_t W H / (2 pi^2 sin(theta_t))) at the Hammersley points, and gives each
 // light the weight W_j = L_t / (N p_j) (its radiance over N times its pdf). Then per pixel
@@ -10,7 +10,7 @@
 // the Monte Carlo estimate of the rendering equation without visibility (as FIS). Every pixel uses
 // the same N lights: the error is structured (banding) rather than noise.
 //
-// The loop over lights is the entry points' (GLSL src/shaders/shade_env.comp, C++ render/passes.cpp:
+// The loop over lights is the entry points' (GLSL src/shaders/shade_env.comp, C++ passes/shade_emu.cpp:
 // a light list is a buffer there), light 0 first, each step one envAddLight: the same order in both
 // builds.
 

@@ -2,12 +2,12 @@
 // Throughput of the environment samplers (shadetwin sweep, issue 5 item 5): each invocation draws
 // `perInvocation` directions with shade/env_sampling.h's sampleEnv and looks up envPdf of each (what
 // one MIS sample pair needs from the sampler); the sum is written so nothing is optimized away.
-// Thin entry point: the C++ side (render/env_sampling_speed.cpp) runs the same loop.
+// Thin entry point: the C++ side (inputs/env_sampling_speed.cpp) runs the same loop.
 #extension GL_GOOGLE_include_directive : require
 #include "shade/all.inl"
 
 layout(local_size_x = 64) in;
-layout(set = 0, binding = 0) uniform sampler2D table;  // render/env_sampling.h
+layout(set = 0, binding = 0) uniform sampler2D table;  // inputs/env_sampling.h
 layout(set = 0, binding = 1) uniform sampler2D texels;
 layout(std430, set = 0, binding = 2) readonly buffer Settings { EnvSampling es; } st;  // EnvSamplingUniforms
 layout(std430, set = 0, binding = 3) writeonly buffer Out { float sums[]; };

@@ -7,7 +7,7 @@ layout(location = 0) in vec3 inPos;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv;
-struct ObjectGpu { mat4 model; mat4 normal; vec4 material; };  // render/gbuffer.h ObjectGpu
+struct ObjectGpu { mat4 model; mat4 normal; vec4 material; };  // passes/gbuffer.h ObjectGpu
 layout(std430, set = 0, binding = 0) readonly buffer Objects { ObjectGpu objects[]; };
 layout(std430, set = 0, binding = 1) readonly buffer Frame { mat4 viewProj; } frame;
 layout(push_constant) uniform Push { uint object; } pc;

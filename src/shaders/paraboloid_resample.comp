@@ -9,7 +9,7 @@
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D env;
 layout(std430, set = 0, binding = 1) writeonly buffer Out { vec4 texels[]; };
-layout(push_constant) uniform Push { float envW; float envH; int faceSize; uint count; } pc;  // render/paraboloid.cpp
+layout(push_constant) uniform Push { float envW; float envH; int faceSize; uint count; } pc;  // inputs/paraboloid.cpp
 
 void main() {
   uint i = gl_GlobalInvocationID.x;

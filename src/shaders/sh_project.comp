@@ -7,7 +7,7 @@
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D env;
 layout(std430, set = 0, binding = 1) writeonly buffer Rows { vec4 rows[]; };  // 9 per row
-layout(push_constant) uniform Push { int width; int height; } pc;  // render/sh_irradiance.cpp
+layout(push_constant) uniform Push { int width; int height; } pc;  // inputs/sh_irradiance.cpp
 
 void main() {
   int y = min(int(gl_GlobalInvocationID.x), pc.height - 1);  // tail invocations repeat the last row

@@ -1,14 +1,14 @@
 #version 450
 // SH irradiance, step 2 (shade/sh_irradiance.h): one invocation per coefficient k reduces the row
 // sums by the pairwise tree (stride 1, 2, 4, ...; in place), then scales band l by A_l / pi.
-// The C++ driver (render/sh_irradiance.cpp) walks the same tree.
+// The C++ driver (inputs/sh_irradiance.cpp) walks the same tree.
 #extension GL_GOOGLE_include_directive : require
 #include "shade/all.inl"
 
 layout(local_size_x = 16) in;
 layout(std430, set = 0, binding = 0) buffer Rows { vec4 rows[]; };  // 9 per row
 layout(std430, set = 0, binding = 1) writeonly buffer Out { vec4 sh[9]; };
-layout(push_constant) uniform Push { uint rowCount; } pc;  // render/sh_irradiance.cpp
+layout(push_constant) uniform Push { uint rowCount; } pc;  // inputs/sh_irradiance.cpp
 
 void main() {
   uint k = gl_GlobalInvocationID.x;

@@ -1,19 +1,19 @@
 #version 450
 // Deferred shading pass (technique "env": environment importance sampling as directional lights),
 // compute stage: thin entry point around shade/shade_env.h; the light loop in the order of
-// render/passes.cpp (light 0 first, one envAddLight each). One invocation per pixel, local size 64.
+// passes/shade_emu.cpp (light 0 first, one envAddLight each). One invocation per pixel, local size 64.
 #extension GL_GOOGLE_include_directive : require
 #include "shade/all.inl"
 
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D env;
-struct GbufFis { vec4 g0; vec4 g1; vec4 g2; vec4 g3; };  // render/shade_vk.cpp
+struct GbufFis { vec4 g0; vec4 g1; vec4 g2; vec4 g3; };  // passes/shade_vk.cpp
 layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufFis gbuf[]; };
-struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lobe0; vec4 lobe1; vec4 rho; uvec4 maps; };  // render/material.h
+struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lobe0; vec4 lobe1; vec4 rho; uvec4 maps; };  // inputs/material.h
 layout(std430, set = 0, binding = 2) readonly buffer Materials { MaterialGpu materials[]; };
-layout(set = 0, binding = 5) uniform sampler2DArray maps;  // render/material.h
+layout(set = 0, binding = 5) uniform sampler2DArray maps;  // inputs/material.h
 layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
-struct EnvLight { vec4 dir; vec4 weight; };  // render/env_lights.h
+struct EnvLight { vec4 dir; vec4 weight; };  // inputs/env_lights.h
 layout(std430, set = 0, binding = 4) readonly buffer Lights { EnvLight lights[]; };
 layout(push_constant) uniform Push {
   vec4 eye, fwd, right, down;

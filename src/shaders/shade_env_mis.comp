@@ -7,15 +7,15 @@
 
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D env;
-struct GbufFis { vec4 g0; vec4 g1; vec4 g2; vec4 g3; };  // render/shade_vk.cpp
+struct GbufFis { vec4 g0; vec4 g1; vec4 g2; vec4 g3; };  // passes/shade_vk.cpp
 layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufFis gbuf[]; };
-struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lobe0; vec4 lobe1; vec4 rho; uvec4 maps; };  // render/material.h
+struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lobe0; vec4 lobe1; vec4 rho; uvec4 maps; };  // inputs/material.h
 layout(std430, set = 0, binding = 2) readonly buffer Materials { MaterialGpu materials[]; };
 layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
-// render/shade_vk.cpp MisSettingsGpu: the shared structs themselves (std430, 32 + 16 bytes).
+// passes/shade_vk.cpp MisSettingsGpu: the shared structs themselves (std430, 32 + 16 bytes).
 layout(std430, set = 0, binding = 4) readonly buffer Settings { EnvSampling es; MisSettings ms; } st;
-layout(set = 0, binding = 5) uniform sampler2DArray maps;  // render/material.h
-layout(set = 0, binding = 6) uniform sampler2D table;      // render/env_sampling.h
+layout(set = 0, binding = 5) uniform sampler2DArray maps;  // inputs/material.h
+layout(set = 0, binding = 6) uniform sampler2D table;      // inputs/env_sampling.h
 layout(set = 0, binding = 7) uniform sampler2D texels;
 layout(push_constant) uniform Push {
   vec4 eye, fwd, right, down;

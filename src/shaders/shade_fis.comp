@@ -7,13 +7,13 @@
 
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D atlas;
-struct GbufFis { vec4 g0; vec4 g1; vec4 g2; vec4 g3; };  // render/shade_vk.cpp
+struct GbufFis { vec4 g0; vec4 g1; vec4 g2; vec4 g3; };  // passes/shade_vk.cpp
 layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufFis gbuf[]; };
-struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lobe0; vec4 lobe1; vec4 rho; uvec4 maps; };  // render/material.h
+struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lobe0; vec4 lobe1; vec4 rho; uvec4 maps; };  // inputs/material.h
 layout(std430, set = 0, binding = 2) readonly buffer Materials { MaterialGpu materials[]; };
-layout(set = 0, binding = 5) uniform sampler2DArray maps;  // render/material.h
+layout(set = 0, binding = 5) uniform sampler2DArray maps;  // inputs/material.h
 layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
-layout(std430, set = 0, binding = 4) readonly buffer Sh { vec4 sh[9]; };  // render/sh_irradiance.cpp
+layout(std430, set = 0, binding = 4) readonly buffer Sh { vec4 sh[9]; };  // inputs/sh_irradiance.cpp
 layout(push_constant) uniform Push {
   vec4 eye, fwd, right, down;
   float invW, invH, maxLod, intensity;

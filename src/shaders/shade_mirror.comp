@@ -7,9 +7,9 @@
 
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D env;
-struct GbufPair { vec4 g0; vec4 g1; };                 // render/passes_vk ShadeGbufGpu
+struct GbufPair { vec4 g0; vec4 g1; };                 // passes/passes_vk ShadeGbufGpu
 layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufPair gbuf[]; };
-struct MaterialGpu { vec4 diffuse; vec4 specular; };  // render/passes_vk MaterialGpu
+struct MaterialGpu { vec4 diffuse; vec4 specular; };  // passes/passes_vk MaterialGpu
 layout(std430, set = 0, binding = 2) readonly buffer Materials { MaterialGpu materials[]; };
 layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
 layout(push_constant) uniform Push {

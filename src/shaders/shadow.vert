@@ -4,7 +4,7 @@
 #include "shade/all.inl"
 
 layout(location = 0) in vec3 inPos;
-struct ObjectGpu { mat4 model; mat4 normal; vec4 material; };  // render/gbuffer.h ObjectGpu
+struct ObjectGpu { mat4 model; mat4 normal; vec4 material; };  // passes/gbuffer.h ObjectGpu
 layout(std430, set = 0, binding = 0) readonly buffer Objects { ObjectGpu objects[]; };
 layout(push_constant) uniform Push { mat4 lightViewProj; uint object; } pc;
 

@@ -1,0 +1,144 @@
+// shadetwin command line.
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <string>
+#include <iostream>
+
+#include "util/compare.h"
+#include "reference/reference.h"
+#include "cli/bench.h"
+#include "cli/sweep.h"
+#include "cli/render.h"
+#include "scene/scene.h"
+#include "cli/verify/verify.h"
+#include "vk/context.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"shadetwin: a bit-exact CPU twin of a Vulkan image-based-lighting renderer"};
+  app.require_subcommand(1);
+  shadetwin::VerifyOptions vo;
+  auto* verify = app.add_subcommand("verify", "differential tests: emulator and C++ builds against a Vulkan device");
+  verify->require_subcommand(1);
+  for (const char* what : {"math", "texture", "mips", "raster", "shadow", "shade", "frame", "paraboloid", "sh"}) {
+    auto* sub = verify->add_subcommand(what, std::string("verify ") + what);
+    sub->add_option("--count", vo.count, "inputs per function / lookups per configuration")->check(CLI::Range(1, 100000000));
+    sub->add_option("--seed", vo.seed, "random seed");
+    sub->add_option("--device", vo.device, "Vulkan device (substring of its name; default lavapipe)");
+    sub->add_flag("--validate", vo.validate, "enable Vulkan validation layers; any error fails the run");
+    const std::string w = what;
+    if (w == "raster" || w == "shadow" || w == "shade" || w == "frame" || w == "paraboloid" || w == "sh") {
+      sub->add_option("--scene", vo.scene, "scene file")->required();
+      if (w != "shadow" && w != "paraboloid" && w != "sh") {
+        sub->add_option("--width", vo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+        sub->add_option("--height", vo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+      }
+    }
+    if (w == "shadow") {
+      sub->add_option("--directions", vo.directions, "number of shadow-map directions")->check(CLI::Range(1, 4096));
+      sub->add_option("--size", vo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
+    }
+    if (w == "paraboloid")
+      sub->add_option("--face-size", vo.faceSize, "face size S of the 2S x S atlas")->check(CLI::Range(4, 8192));
+    if (w == "shade" || w == "frame") sub->add_option("--technique", vo.technique, "shading technique (default: the scene's)");
+    if (std::string(what) == "texture") {
+      sub->add_flag("--finite", vo.finiteTexels, "only finite normal texel values (no inf, NaN or denormals)");
+      sub->add_option("--filters", vo.filters,
+                      "comma-separated cases: texelFetch,nearest,nearest-miplin,bilinear,trilinear,magN-minL");
+      sub->add_option("--stages", vo.stages, "comma-separated shader stages: compute,fragment (default both)");
+      sub->add_flag("--implicit-lod", vo.implicitLod,
+                    "fragment-stage texture() with implicit LOD on smooth coordinate fields (instead of textureLod)");
+      sub->add_option("--image", vo.image, "sample this image (EXR/HDR/PNG) with its MIP chain instead of random textures");
+      sub->add_option("--seeds", vo.seeds, "run N consecutive seeds from --seed (rows only for configurations that differ)")
+          ->check(CLI::Range(1, 100000));
+      sub->add_option("--profile-set", vo.profileSet,
+                      "KEY=VALUE: run the emulator with an alternative value of a device-profile field (e.g. "
+                      "maskedFragmentLanes=skip), to measure what the profile's choice is worth; repeatable");
+    }
+  }
+  app.add_subcommand("devices", "list Vulkan devices");
+  shadetwin::RenderOptions ro;
+  auto* render = app.add_subcommand("render", "render a scene (default scenes/bunny.json) to an EXR and a tone-mapped PNG");
+  render->add_option("scene", ro.scene, "scene file (JSON, see README)");
+  render->add_option("--device", ro.device, "emu (the emulated GPU) or vulkan")->check(CLI::IsMember({"emu", "vulkan"}));
+  render->add_option("--out", ro.out, "output EXR (the PNG is written next to it); default <scene>.exr");
+  render->add_option("--width", ro.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+  render->add_option("--height", ro.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  render->add_option("--profile", ro.profile, "device profile the emulator follows (lavapipe, nvidia)");
+  render->add_option("--frames", ro.frames, "frames to render (OUT_0000.exr, ...); technique inputs are rebuilt only when the environment changes")
+      ->check(CLI::Range(1, 100000));
+  render->add_option("--env-rotate", ro.envRotate, "degrees the environment turns about +y per frame (whole texel columns)");
+  render->add_option("--blocks", ro.blocks, "kd-tree blocks of kdtree-mis / alias-mis (default: the scene's mis.blocks, 6144)")
+      ->check(CLI::Range(1, 1 << 20));
+  shadetwin::ReferenceCommandOptions refo;
+  auto* ref = app.add_subcommand("reference", "ground truth: Embree + TBB Monte Carlo with MIS, written as EXR + PNG");
+  ref->add_option("scene", refo.scene, "scene file (JSON, see README)");
+  ref->add_option("--spp", refo.render.spp, "samples per pixel (each: one environment and one BRDF direction)")->check(CLI::Range(1, 1 << 24));
+  ref->add_option("--seed", refo.render.seed, "random seed");
+  ref->add_flag("--visibility", refo.render.visibility, "trace an occlusion ray for every direction");
+  ref->add_option("--out", refo.out, "output EXR; default <scene>_ref.exr");
+  ref->add_option("--width", refo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+  ref->add_option("--height", refo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  std::string cmpA, cmpB;
+  auto* cmp = app.add_subcommand("compare", "error metrics of image A against reference B: RMSE, relMSE, PSNR");
+  cmp->add_option("A", cmpA, "image")->required();
+  cmp->add_option("B", cmpB, "reference image")->required();
+  shadetwin::BenchOptions bo;
+  auto* bench = app.add_subcommand("bench", "time passes on the emulator and on a Vulkan device in one run; last line: ratio emu/vulkan");
+  bench->add_option("--scene", bo.scene, "scene file");
+  bench->add_option("--passes", bo.passes, "comma-separated passes: gbuffer, shadow, shade");
+  bench->add_option("--width", bo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+  bench->add_option("--height", bo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  bench->add_option("--repeat", bo.repeat, "timed runs per pass (median reported)")->check(CLI::Range(1, 1000));
+  bench->add_option("--directions", bo.directions, "shadow-map directions")->check(CLI::Range(1, 4096));
+  bench->add_option("--shadow-size", bo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
+  bench->add_option("--device", bo.device, "Vulkan device (substring of its name; default lavapipe)");
+  shadetwin::SweepOptions so;
+  auto* sweep = app.add_subcommand("sweep", "speed against error: techniques x sample counts vs the reference; CSV + plots");
+  sweep->add_option("--scene", so.scene, "scene file");
+  sweep->add_option("--technique", so.techniques, "comma-separated: fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis");
+  sweep->add_option("--blocks", so.blocks, "kd-tree blocks of the *-mis techniques (default: the scene's)")->check(CLI::Range(1, 1 << 20));
+  sweep->add_option("--maps", so.maps, "with a *-mis technique: environment maps (assets/hdri/NAME.exr) of the sampler study");
+  sweep->add_option("--samples", so.samples, "comma-separated sample counts");
+  sweep->add_option("--reference", so.reference, "reference EXR (default: render it)");
+  sweep->add_option("--reference-spp", so.referenceSpp, "samples per pixel of the rendered reference")->check(CLI::Range(1, 1 << 20));
+  sweep->add_option("--out", so.out, "output folder");
+  sweep->add_option("--width", so.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+  sweep->add_option("--height", so.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  sweep->add_option("--device", so.device, "Vulkan device (substring of its name; default lavapipe)");
+  sweep->add_flag("!--no-vulkan", so.vulkan, "emulator only");
+  bench->add_option("--technique", bo.technique, "shading technique (default: the scene's); passes default to gbuffer,shade");
+  bench->add_option("--samples", bo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (app.got_subcommand("devices")) {
+      for (auto& n : shadetwin::vk::Context::listDevices()) std::cout << n << "\n";
+      return 0;
+    }
+    if (app.got_subcommand("render")) return shadetwin::renderCommand(ro, std::cout);
+    if (app.got_subcommand("sweep")) return shadetwin::sweepCommand(so, std::cout);
+    if (app.got_subcommand("bench")) {
+      if (!bo.technique.empty() && bench->get_option("--passes")->count() == 0) bo.passes = "gbuffer,shade";
+      return shadetwin::benchCommand(bo, std::cout);
+    }
+    if (app.got_subcommand("reference")) return shadetwin::referenceCommand(refo, std::cout);
+    if (app.got_subcommand("compare")) return shadetwin::compareCommand(cmpA, cmpB, std::cout);
+    if (verify->got_subcommand("math")) return shadetwin::verifyMath(vo, std::cout);
+    if (verify->got_subcommand("texture")) return shadetwin::verifyTexture(vo, std::cout);
+    if (verify->got_subcommand("raster")) return shadetwin::verifyRaster(vo, std::cout);
+    if (verify->got_subcommand("shadow")) return shadetwin::verifyShadow(vo, std::cout);
+    if (verify->got_subcommand("shade")) return shadetwin::verifyShade(vo, std::cout);
+    if (verify->got_subcommand("frame")) return shadetwin::verifyFrame(vo, std::cout);
+    if (verify->got_subcommand("mips")) return shadetwin::verifyMips(vo, std::cout);
+    if (verify->got_subcommand("paraboloid")) return shadetwin::verifyParaboloid(vo, std::cout);
+    if (verify->got_subcommand("sh")) return shadetwin::verifyShIrradiance(vo, std::cout);
+  } catch (const std::exception& e) {
+    std::cerr << "shadetwin: error: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

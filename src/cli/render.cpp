@@ -1,0 +1,165 @@
+#include "cli/render.h"
+
+#include <memory>
+
+#include "inputs/paraboloid.h"
+
+#include <chrono>
+#include <cstring>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include "emu/device_profile.h"
+#include "emu/format.h"
+#include "util/image_io.h"
+#include "passes/mips.h"
+#include "passes/shade.h"
+#include "passes/passes_vk.h"
+#include "inputs/shade_inputs.h"
+#include "vk/context.h"
+#include "scene/scene.h"
+#include "util/timer.h"
+
+namespace shadetwin {
+using Clock = std::chrono::steady_clock;
+
+namespace {
+// Output path of frame f: OUT itself for a single frame, else OUT's stem + _NNNN.
+std::string frameOut(const std::string& out, uint32_t frames, uint32_t f) {
+  if (frames == 1) return out;
+  std::filesystem::path p(out);
+  std::ostringstream name;
+  name << p.stem().string() << "_" << std::setw(4) << std::setfill('0') << f << p.extension().string();
+  return (p.parent_path() / name.str()).string();
+}
+}  // namespace
+
+int renderCommand(const RenderOptions& opts, std::ostream& log) {
+  auto t0 = Clock::now();
+  Scene scene = loadScene(opts.scene);
+  if (opts.width) scene.width = opts.width;
+  if (opts.height) scene.height = opts.height;
+  if (opts.blocks) scene.envBlocks = opts.blocks;
+  const double tScene = msSince(t0);
+  if (opts.device != "emu" && opts.device != "vulkan") throw std::invalid_argument("--device " + opts.device + ": expected emu or vulkan");
+  if (opts.frames == 0) throw std::invalid_argument("--frames: expected at least 1");
+  const emu::DeviceProfile& dev = emu::profileByName(opts.profile);
+  log << "scene " << opts.scene << ": " << scene.objects.size() << " objects, " << scene.triangles() << " triangles, "
+      << scene.width << "x" << scene.height << ", environment " << scene.environment << "\n";
+  t0 = Clock::now();
+  const EnvironmentMap env0 = loadEnvironment(scene.environment, log);
+  const double tEnv = msSince(t0);
+  std::string out = opts.out;
+  if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + ".exr";
+  log << std::fixed << std::setprecision(1);
+  log << "  load scene + meshes      " << std::setw(8) << tScene << " ms\n";
+  log << "  environment + MIP chain  " << std::setw(8) << tEnv << " ms  (" << env0.width << "x" << env0.height << ", "
+      << env0.texture->levelCount() << " levels, " << env0.negative << " negative texel values)\n";
+
+  // Frames: the environment turns by --env-rotate degrees per frame (a whole-column shift of level 0,
+  // then its MIP chain); the technique inputs (atlas + MIP chain, SH, lights) are rebuilt on a frame
+  // whose environment changed and reused otherwise; the G-buffer does not depend on the environment
+  // and is drawn once.
+  ShadeInputsCache cache;
+  std::unique_ptr<vk::Context> ctx;
+  std::unique_ptr<GbufferPassVk> gpass;
+  std::unique_ptr<ShadePassVk> spass;
+  GBuffer g;
+  // MIS techniques draw new random numbers every frame (Philox key word 1 = the frame) and average
+  // progressively: frame f writes the mean of the frames since the environment last changed.
+  const bool progressive = usesMisPass(scene.technique);
+  std::vector<double> accum;
+  uint32_t accumFrames = 0;
+  for (uint32_t f = 0; f < opts.frames; ++f) {
+    scene.misFrame = f;
+    std::ostringstream passes;
+    passes << std::fixed << std::setprecision(1);
+    const double degrees = opts.envRotate * f;
+    t0 = Clock::now();
+    const EnvironmentMap rotated = f && environmentShift(env0.width, degrees) ? rotateEnvironment(env0, degrees) : EnvironmentMap{};
+    const EnvironmentMap& env = rotated.texture ? rotated : env0;
+    const double tRotate = msSince(t0);
+    std::vector<float> image;
+    if (opts.device == "emu") {
+      GbufferStats gs;
+      t0 = Clock::now();
+      if (f == 0) g = gbufferEmu(scene, dev, &gs);
+      const double tGbuf = msSince(t0);
+      const ShadeInputs& in = cache.emu(scene, *env.texture, dev);
+      t0 = Clock::now();
+      image = shadeEmu(scene, g, in, dev);
+      const double tShade = msSince(t0);
+      if (rotated.texture)
+        passes << "  environment turned      " << std::setw(8) << tRotate << " ms  (" << degrees << " degrees = "
+               << environmentShift(env0.width, degrees) << " columns, + MIP chain)\n";
+      if (in.atlas && cache.lastRebuilt()) {
+        passes << "  paraboloid atlas (emu)   " << std::setw(8) << in.atlasMs << " ms  (" << 2 * scene.fisFaceSize << "x"
+               << scene.fisFaceSize << " + MIP chain)\n";
+        passes << "  SH irradiance (emu)      " << std::setw(8) << in.shMs << " ms  (order 3, " << env.width << " x "
+               << env.height << " texels)\n";
+      } else if (!cache.lastRebuilt()) {
+        passes << "  technique inputs                -     (environment unchanged: reused)\n";
+      }
+      if (in.envTables && cache.lastRebuilt()) {
+        const EnvSamplingTables& T = *in.envTables;
+        passes << "  sampler tables (host)    " << std::setw(8) << T.buildMs << " ms  (" << scene.technique;
+        if (T.uniforms.count) passes << ": " << T.uniforms.count << " blocks, alpha " << std::setprecision(4) << T.fit.alpha << ", L1 misfit " << T.fit.l1
+                             << std::setprecision(1);
+        passes << ")\n";
+      }
+      if (f == 0)
+        passes << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
+               << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
+               << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
+      passes << "  shading (emu, " << scene.technique;
+      if (progressive) passes << ", " << scene.misSamples << " sample pairs, frame " << f;
+      else if (scene.technique != "mirror") passes << ", " << scene.fisSamples << " samples";
+      passes << ")    " << std::setw(8) << tShade << " ms\n";
+    } else {
+      t0 = Clock::now();
+      if (f == 0) {
+        ctx = std::make_unique<vk::Context>();
+        gpass = std::make_unique<GbufferPassVk>(*ctx, scene);
+      }
+      const ShadeInputs& in = cache.vulkan(*ctx, scene, *env.texture);
+      if (cache.lastRebuilt() || rotated.texture) spass = std::make_unique<ShadePassVk>(*ctx, scene, in);
+      const double tSetup = msSince(t0);
+      if (f == 0) g = gpass->run();
+      image = spass->run(g);
+      passes << "  Vulkan set-up (" << ctx->deviceName() << ")  " << std::setw(8) << tSetup << " ms"
+             << (cache.lastRebuilt() ? "" : "  (technique inputs reused)") << "\n";
+      if (f == 0) passes << "  G-buffer (vulkan)        " << std::setw(8) << gpass->lastMs << " ms  (submit to read-back)\n";
+      passes << "  shading (vulkan, " << scene.technique << ") " << std::setw(8) << spass->lastMs << " ms  (submit to read-back)\n";
+    }
+    // Passes the technique does not use are not run.
+    passes << "  shadow maps              " << std::setw(8) << "-" << "     (not run: technique " << scene.technique
+           << " uses no visibility)\n";
+    if (progressive) {
+      if (f == 0 || cache.lastRebuilt() || rotated.texture) accum.assign(image.size(), 0.0), accumFrames = 0;
+      ++accumFrames;
+      for (size_t i = 0; i < image.size(); ++i) {
+        accum[i] += image[i];
+        image[i] = float(accum[i] / accumFrames);
+      }
+      if (opts.frames > 1) passes << "  progressive mean of " << accumFrames << " frame(s)\n";
+    }
+    const std::string exr = frameOut(out, opts.frames, f);
+    const std::string png = std::filesystem::path(exr).replace_extension(".png").string();
+    t0 = Clock::now();
+    writeExr(exr, scene.width, scene.height, image);
+    writePngToneMapped(png, scene.width, scene.height, image);
+    const double tWrite = msSince(t0);
+    if (opts.frames > 1) log << "frame " << f << ":\n";
+    log << passes.str();
+    log << "  write EXR + PNG          " << std::setw(8) << tWrite << " ms\n";
+    log << "wrote " << exr << " and " << png << "\n";
+  }
+  if (opts.frames > 1)
+    log << opts.frames << " frames, technique inputs built " << cache.builds() << " time(s)\n";
+  return 0;
+}
+
+}  // namespace shadetwin

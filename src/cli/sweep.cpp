@@ -1,0 +1,207 @@
+#include "cli/sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "emu/device_profile.h"
+#include "util/compare.h"
+#include "util/image_io.h"
+#include "reference/reference.h"
+#include "inputs/env_sampling.h"
+#include "inputs/env_sampling_speed.h"
+#include "passes/shade.h"
+#include "passes/passes_vk.h"
+#include "inputs/environment.h"
+#include "scene/scene.h"
+#include "util/plot.h"
+#include "util/timer.h"
+#include "vk/context.h"
+
+namespace shadetwin {
+namespace {
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> r;
+  std::stringstream ss(s);
+  for (std::string p; std::getline(ss, p, ',');)
+    if (!p.empty()) r.push_back(p);
+  return r;
+}
+
+// The sampler study of the MIS techniques (issue 5, item 5): env_sampling.csv.
+void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::DeviceProfile& dev, vk::Context* ctx, std::ostream& log) {
+  const std::string path = (std::filesystem::path(opts.out) / "env_sampling.csv").string();
+  std::ofstream csv(path);
+  if (!csv) throw std::runtime_error("sweep: cannot write " + path);
+  csv << "map,width,height,method,blocks,alpha,l1_misfit,build_ms,sampling_bytes,pdf_bytes,packed_kd_bytes,inversion_bytes,"
+         "compression_packed,compression_stored,samples_per_s_scalar,samples_per_s_simd,samples_per_s_vulkan,"
+         "ratio_vs_inversion_simd,ratio_vs_inversion_vulkan,checksums_equal\n";
+  const std::filesystem::path dir = std::filesystem::path(scene.environment).parent_path();
+  const char* names[3] = {"kd-tree", "alias", "inversion"};
+  log << "  sampler study (" << scene.envBlocks << " blocks; samples/s = one direction + the pdf lookup of it):\n";
+  for (const std::string& name : splitList(opts.maps)) {
+    const std::string file = (dir / (name + ".exr")).string();
+    if (!std::filesystem::exists(file)) throw std::invalid_argument("--maps: " + file + " does not exist (run scripts/setup.sh)");
+    std::ostringstream quiet;
+    const EnvironmentMap env = loadEnvironment(file, quiet);
+    for (uint32_t scale : {1u, 2u}) {
+      const emu::Texture tex = emu::floatTexture(emu::Format::RGBA32F, env.width * scale, env.height * scale,
+                                                 repeatTexels(env.levels[0].data(), env.width, env.height, scale).data());
+      SamplerSpeed speed[3];
+      EnvSamplingTables T[3];
+      for (uint32_t m = 0; m < 3; ++m) {
+        T[m] = envSamplingTables(tex, m, scene.envBlocks);
+        if (scale == 1) speed[m] = envSamplerSpeed(T[m], dev, ctx, 32768, 32);
+      }
+      for (uint32_t m = 0; m < 3; ++m) {
+        const EnvSamplingTables& t = T[m];
+        const size_t inv = inversionTableBytes(tex.width(), tex.height()), packed = packedKdTreeBytes(t.uniforms.count);
+        csv << name << "," << tex.width() << "," << tex.height() << "," << names[m] << "," << t.uniforms.count << "," << std::setprecision(6)
+            << (m == 0 ? t.fit.alpha : NAN) << "," << (m == 0 ? t.fit.l1 : NAN) << "," << std::setprecision(3) << t.buildMs << ","
+            << t.samplingBytes << "," << t.pdfBytes << "," << (m < 2 ? packed : 0) << "," << inv << ","
+            << (m < 2 ? double(inv) / packed : 1.0) << "," << double(inv) / double(t.samplingBytes + t.pdfBytes) << ",";
+        if (scale == 1)
+          csv << std::setprecision(4) << speed[m].scalar << "," << speed[m].simd << "," << speed[m].vulkan << ","
+              << speed[m].simd / speed[2].simd << "," << speed[m].vulkan / speed[2].vulkan << ","
+              << (speed[m].checksumScalar == speed[m].checksumSimd && (!ctx || speed[m].checksumSimd == speed[m].checksumVulkan)) << "\n";
+        else
+          csv << ",,,,,\n";
+        log << "    " << std::left << std::setw(10) << name << std::right << std::setw(5) << tex.width() << "x" << std::setw(4)
+            << std::left << tex.height() << std::right << " " << std::setw(9) << names[m] << std::setprecision(1) << std::setw(7)
+            << t.buildMs << " ms  " << std::setw(9) << (t.samplingBytes + t.pdfBytes) / 1024.0 << " KiB";
+        if (m == 0) log << "  alpha " << std::setprecision(4) << t.fit.alpha << "  L1 " << t.fit.l1;
+        if (m < 2) log << "  1:" << std::setprecision(0) << double(inv) / packed << " packed";
+        if (scale == 1)
+          log << "  " << std::setprecision(2) << speed[m].scalar / 1e6 << " / " << speed[m].simd / 1e6 << " / " << speed[m].vulkan / 1e6
+              << " M/s (scalar / simd / vulkan)";
+        log << "\n";
+      }
+    }
+  }
+  log << "  wrote " << path << "\n";
+}
+
+}  // namespace
+
+int sweepCommand(const SweepOptions& opts, std::ostream& log) {
+  Scene scene = loadScene(opts.scene);
+  if (opts.width) scene.width = opts.width;
+  if (opts.height) scene.height = opts.height;
+  if (opts.blocks) scene.envBlocks = opts.blocks;
+  const std::vector<std::string> techniques = splitList(opts.techniques);
+  std::vector<uint32_t> samples;
+  for (const std::string& s : splitList(opts.samples)) {
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(s.c_str(), &end, 10);
+    if (*end || v < 1 || v > 4096) throw std::invalid_argument("--samples: '" + s + "' is not a count in [1, 4096]");
+    samples.push_back(uint32_t(v));
+  }
+  for (const std::string& t : techniques)
+    if (!isTechnique(t) || t == "mirror")
+      throw std::invalid_argument("--technique: '" + t +
+                                  "' is not a sampling technique (fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis)");
+  if (techniques.empty() || samples.empty()) throw std::invalid_argument("sweep: no techniques or no sample counts");
+  std::filesystem::create_directories(opts.out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+  log << "sweep " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << scene.environment << "\n";
+
+  // Reference: given, or rendered here (MIS, no visibility: the techniques have none).
+  std::vector<float> ref;
+  if (!opts.reference.empty()) {
+    ImageRGBA r = loadImageRGBA(opts.reference);
+    if (r.width != scene.width || r.height != scene.height)
+      throw std::invalid_argument("--reference " + opts.reference + ": " + std::to_string(r.width) + "x" +
+                                  std::to_string(r.height) + ", the sweep renders " + std::to_string(scene.width) + "x" +
+                                  std::to_string(scene.height));
+    ref = std::move(r.texels);
+    log << "  reference " << opts.reference << "\n";
+  } else {
+    ReferenceOptions ro;
+    ro.spp = opts.referenceSpp;
+    const auto t0 = std::chrono::steady_clock::now();
+    ref = renderReference(scene, EnvImage{env.width, env.height, env.levels[0].data()}, ro);
+    const std::string path = (std::filesystem::path(opts.out) / "reference.exr").string();
+    writeExr(path, scene.width, scene.height, ref);
+    log << "  reference: " << ro.spp << " spp x 2 (MIS), " << std::fixed << std::setprecision(1) << msSince(t0) / 1000
+        << " s, wrote " << path << "\n";
+  }
+
+  const emu::DeviceProfile* dev = &emu::lavapipeProfile();
+  std::unique_ptr<vk::Context> ctx;
+  GBuffer gv;
+  if (opts.vulkan) {
+    vk::ContextOptions co;
+    co.device = opts.device;
+    ctx = std::make_unique<vk::Context>(co);
+    dev = &emu::profileForDevice(ctx->deviceName());
+    gv = gbufferVulkan(*ctx, scene);
+    log << "  Vulkan device " << ctx->deviceName() << " (profile " << dev->name << ")\n";
+  }
+  const GBuffer g = gbufferEmu(scene, *dev);
+  std::vector<uint8_t> covered(size_t(g.width) * g.height);  // the techniques differ only where geometry is
+  for (size_t p = 0; p < covered.size(); ++p) covered[p] = g.texels[p * kGbufFloats + 3] != 0.0f;
+  log << "  metrics over the " << std::count(covered.begin(), covered.end(), 1) << " covered pixels\n";
+
+  const std::string csvPath = (std::filesystem::path(opts.out) / "sweep.csv").string();
+  std::ofstream csv(csvPath);
+  if (!csv) throw std::runtime_error("sweep: cannot write " + csvPath);
+  csv << "technique,samples,ms_emu,ms_vulkan,rmse,relmse,psnr,bit_identical,values\n";
+  std::vector<PlotSeries> bySamples, byTime;
+  log << std::fixed;
+  for (const std::string& t : techniques) {
+    scene.technique = t;
+    PlotSeries ps{t, {}, {}}, pt{t, {}, {}};
+    std::unique_ptr<ShadeInputs> inE;
+    for (uint32_t n : samples) {
+      (usesMisPass(t) ? scene.misSamples : scene.fisSamples) = n;
+      if (!inE || t == "env") inE = std::make_unique<ShadeInputs>(shadeInputsEmu(scene, *env.texture, *dev));
+      std::vector<float> img;
+      shadeEmu(scene, g, *inE, *dev, img);  // warm-up
+      auto t0 = std::chrono::steady_clock::now();
+      shadeEmu(scene, g, *inE, *dev, img);
+      const double msEmu = msSince(t0);
+      double msVk = NAN;
+      size_t same = 0;
+      if (ctx) {
+        ShadePassVk pass(*ctx, scene, *inE);
+        const std::vector<float> v = pass.run(gv);
+        msVk = pass.lastMs;
+        for (size_t i = 0; i < v.size(); ++i) same += std::memcmp(&v[i], &img[i], 4) == 0;
+      }
+      const ImageMetrics m = imageMetrics(img, ref, covered);
+      csv << std::fixed << t << "," << n << "," << std::setprecision(2) << msEmu << "," << msVk << "," << std::setprecision(6) << m.rmse
+          << "," << m.relMse << "," << std::setprecision(3) << m.psnr << "," << same << "," << img.size() << "\n";
+      log << "  " << std::setw(10) << std::left << t << std::right << std::setw(5) << n << " samples  emu " << std::setprecision(1)
+          << std::setw(8) << msEmu << " ms  vulkan " << std::setw(8) << msVk << " ms  RMSE " << std::setprecision(5)
+          << m.rmse << "  relMSE " << m.relMse << "  PSNR " << std::setprecision(2) << m.psnr << " dB";
+      if (ctx) log << "  " << same << "/" << img.size() << " bit-identical";
+      log << "\n";
+      ps.x.push_back(n), ps.y.push_back(m.rmse), pt.x.push_back(msEmu), pt.y.push_back(m.rmse);
+    }
+    bySamples.push_back(ps), byTime.push_back(pt);
+  }
+  if (std::any_of(techniques.begin(), techniques.end(), [](const std::string& t) { return usesMisPass(t); }))
+    envSamplerStudy(opts, scene, *dev, ctx.get(), log);
+  const std::string stem = std::filesystem::path(opts.scene).stem().string();
+  const std::string p1 = (std::filesystem::path(opts.out) / "rmse_vs_samples.png").string();
+  const std::string p2 = (std::filesystem::path(opts.out) / "rmse_vs_time.png").string();
+  std::string w1 = writeLogLogPlot(p1, bySamples, {"RMSE vs samples per pixel, " + stem, "samples N", "RMSE", true});
+  std::string w2 = writeLogLogPlot(p2, byTime, {"RMSE vs emulator shading time, " + stem, "ms per frame (emu)", "RMSE", false});
+  if (!w1.empty()) log << "  warning: " << w1 << "\n";
+  if (!w2.empty()) log << "  warning: " << w2 << "\n";
+  log << "wrote " << csvPath << ", " << p1 << ", " << p2 << "\n";
+  return 0;
+}
+
+}  // namespace shadetwin

@@ -1,0 +1,157 @@
+// verify shadow / shade / frame: the shadow-map passes, the shading pass (both builds on the same
+// G-buffer, the Vulkan build's) and whole frames, emulator vs Vulkan build, bit for bit.
+#include <cstring>
+#include <memory>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "emu/device_profile.h"
+#include "passes/mips.h"
+#include "inputs/paraboloid.h"
+#include "inputs/sh_irradiance.h"
+#include "passes/passes_vk.h"
+#include "inputs/environment.h"
+#include "scene/scene.h"
+#include "cli/verify/verify.h"
+#include "vk/context.h"
+
+namespace shadetwin {
+namespace {
+
+struct Setup {
+  Scene scene;
+  std::unique_ptr<vk::Context> ctx;
+  const emu::DeviceProfile* dev = nullptr;
+};
+
+Setup setUp(const VerifyOptions& opts, std::ostream& out) {
+  Setup s;
+  s.scene = loadScene(opts.scene);
+  if (opts.width) s.scene.width = opts.width;
+  if (opts.height) s.scene.height = opts.height;
+  if (!opts.technique.empty()) s.scene.technique = opts.technique;
+  if (!isTechnique(s.scene.technique))
+    throw std::invalid_argument("--technique " + s.scene.technique + ": expected fis, unfiltered, stochastic, env or mirror");
+  vk::ContextOptions co;
+  co.device = opts.device;
+  co.validation = opts.validate;
+  s.ctx = std::make_unique<vk::Context>(co);
+  s.dev = &emu::profileForDevice(s.ctx->deviceName());
+  out << "scene " << opts.scene << ": " << s.scene.width << "x" << s.scene.height << ", " << s.scene.triangles()
+      << " triangles; device: " << s.ctx->deviceName() << " (profile " << s.dev->name << ")\n";
+  return s;
+}
+
+int finish(const char* what, const std::array<size_t, 2>& it, const vk::Context& ctx, const VerifyOptions& opts,
+           std::ostream& out) {
+  if (opts.validate && ctx.validationErrors()) {
+    out << "validation errors: " << ctx.validationErrors() << " (last: " << ctx.lastValidationMessage << ")\n";
+    return 1;
+  }
+  out << what << ": " << it[0] << "/" << it[1] << " bit-identical\n";
+  return it[0] == it[1] ? 0 : 1;
+}
+
+std::vector<UlpTally> compareRgba(const std::vector<float>& e, const std::vector<float>& g) {
+  std::vector<UlpTally> t;
+  for (int c = 0; c < 4; ++c) t.push_back({std::string("color.") + "rgba"[c]});
+  for (size_t i = 0; i < e.size(); ++i) t[i % 4].add(e[i], g[i]);
+  return t;
+}
+
+}  // namespace
+
+int verifyShadow(const VerifyOptions& opts, std::ostream& out) {
+  Setup s = setUp(opts, out);
+  const std::vector<Vec3> dirs = sphereDirections(opts.directions);
+  ShadowStats st;
+  ShadowMaps e = shadowEmu(s.scene, dirs, opts.shadowSize, *s.dev, &st);
+  ShadowPassVk pass(*s.ctx, s.scene, opts.shadowSize);
+  ShadowMaps g = pass.run(dirs);
+  out << dirs.size() << " directions, " << opts.shadowSize << "x" << opts.shadowSize << " D32F each; "
+      << st.raster.fragments << " fragments, " << st.raster.trianglesClipped << " clipped\n";
+  std::vector<UlpTally> t{{"depth"}, {"covered"}};
+  size_t worst = 0, worstDiff = 0;
+  const size_t px = size_t(opts.shadowSize) * opts.shadowSize;
+  for (size_t d = 0; d < dirs.size(); ++d) {
+    size_t diff = 0;
+    for (size_t p = 0; p < px; ++p) {
+      const float a = e.map(d)[p], b = g.map(d)[p];
+      const size_t before = t[0].identical;
+      t[0].add(a, b);
+      diff += t[0].identical == before;
+      t[1].total++;
+      t[1].identical += (a < 1.0f) == (b < 1.0f);
+    }
+    if (diff > worstDiff) worst = d, worstDiff = diff;
+  }
+  const auto it = printTallies(t, out);
+  if (worstDiff)
+    out << "most differences in direction " << worst << " (" << dirs[worst][0] << ", " << dirs[worst][1] << ", "
+        << dirs[worst][2] << "): " << worstDiff << " depth values\n";
+  return finish("shadow", it, *s.ctx, opts, out);
+}
+
+int verifyShade(const VerifyOptions& opts, std::ostream& out) {
+  Setup s = setUp(opts, out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
+  GBuffer g = gbufferVulkan(*s.ctx, s.scene);  // one G-buffer for both shading passes
+  // The technique's inputs, the same for both passes (fis: the emulator's atlas and SH irradiance).
+  const ShadeInputs in = shadeInputsEmu(s.scene, *env.texture, *s.dev);
+  std::vector<float> e = shadeEmu(s.scene, g, in, *s.dev);
+  ShadePassVk pass(*s.ctx, s.scene, in);
+  std::vector<float> v = pass.run(g);
+  out << "technique " << s.scene.technique << ", shading the Vulkan build's G-buffer in both builds\n";
+  return finish("shade", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
+}
+
+int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
+  Setup s = setUp(opts, out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
+  // Each build makes its own technique inputs (fis: atlas + MIP chain, SH irradiance).
+  const ShadeInputs inE = shadeInputsEmu(s.scene, *env.texture, *s.dev);
+  const ShadeInputs inV = shadeInputsVulkan(*s.ctx, s.scene, *env.texture);
+  std::vector<float> e = shadeEmu(s.scene, gbufferEmu(s.scene, *s.dev), inE, *s.dev);
+  ShadePassVk pass(*s.ctx, s.scene, inV);
+  std::vector<float> v = pass.run(gbufferVulkan(*s.ctx, s.scene));
+  out << "technique " << s.scene.technique << ", whole frames (G-buffer + shading) of each build\n";
+  return finish("frame", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
+}
+
+int verifyParaboloid(const VerifyOptions& opts, std::ostream& out) {
+  Setup s = setUp(opts, out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
+  const uint32_t S = opts.faceSize;
+  std::vector<float> e = paraboloidAtlasEmu(*env.texture, *s.dev, S);
+  std::vector<float> v = paraboloidAtlasVulkan(*s.ctx, *env.texture, S);
+  out << "environment " << s.scene.environment << " (" << env.width << "x" << env.height << ") -> paraboloid atlas "
+      << 2 * S << "x" << S << "\n";
+  std::vector<UlpTally> t = compareRgba(e, v);
+  // The MIP chain of the (emulator's) atlas, shared downsampling kernel on both sides.
+  const auto ce = mipChainCpu(e, 2 * S, S, 1, 8), cv = mipChainGpu(*s.ctx, e, 2 * S, S, 1);
+  UlpTally mips{"mip levels 1.."};
+  for (size_t l = 1; l < ce.size(); ++l)
+    for (size_t i = 0; i < ce[l].size(); ++i) mips.add(ce[l][i], cv[l][i]);
+  t.push_back(mips);
+  return finish("paraboloid", printTallies(t, out), *s.ctx, opts, out);
+}
+
+int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out) {
+  Setup s = setUp(opts, out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
+  const ShIrradiance e = shIrradianceEmu(*env.texture, *s.dev), v = shIrradianceVulkan(*s.ctx, *env.texture);
+  out << "environment " << s.scene.environment << " (" << env.width << "x" << env.height
+      << ") -> 9 x RGB coefficients of E/pi\n";
+  UlpTally t{"coefficients"};
+  for (size_t i = 0; i < e.c.size(); ++i) t.add(e.c[i], v.c[i]);
+  out << "E/pi(+y) = " << shIrradianceAt(e, {0, 1, 0})[1] << ", E/pi(-y) = " << shIrradianceAt(e, {0, -1, 0})[1]
+      << " (green)\n";
+  return finish("sh", printTallies({t}, out), *s.ctx, opts, out);
+}
+
+}  // namespace shadetwin

@@ -1,0 +1,112 @@
+#include "inputs/sh_irradiance.h"
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "emu/fpenv.h"
+#include "passes/shade.h"
+#include "passes/passes_vk.h"
+#include "lanes/instantiate.h"
+#include "vk/context.h"
+
+namespace shadetwin {
+namespace {
+#include "sh_project_comp.inc"
+#include "sh_reduce_comp.inc"
+
+struct ProjectPush {
+  int32_t width, height;
+};
+static_assert(sizeof(ProjectPush) == 8, "ProjectPush must match the push block of sh_project.comp");
+struct ReducePush {
+  uint32_t rowCount;
+};
+static_assert(sizeof(ReducePush) == 4, "ReducePush must match the push block of sh_reduce.comp");
+
+void checkInput(const emu::Texture& env) {
+  if (env.format() != emu::Format::RGBA32F) throw std::invalid_argument("SH irradiance: the environment must be RGBA32F");
+  if (env.width() < 1 || env.height() < 1) throw std::invalid_argument("SH irradiance: empty environment");
+}
+
+using V3f = shade::V3<float>;
+
+// The pairwise tree of sh_reduce.comp over `rows` (9 vec4 per row, in place), then the band scale.
+ShIrradiance reduceRows(std::vector<float>& rows, uint32_t rowCount) {
+  ShIrradiance r;
+  for (uint32_t k = 0; k < 9; ++k) {
+    for (uint32_t s = 1; s < rowCount; s *= 2)
+      for (uint32_t i = 0; i + s < rowCount; i += 2 * s) {
+        float* a = &rows[4 * (i * 9 + k)];
+        const float* b = &rows[4 * ((i + s) * 9 + k)];
+        const V3f c = shade::scalar::shAdd3(V3f(a[0], a[1], a[2]), V3f(b[0], b[1], b[2]));
+        a[0] = c.x, a[1] = c.y, a[2] = c.z;
+      }
+    const float* t = &rows[4 * k];
+    const V3f c = shade::scalar::shIrradianceScale(k, V3f(t[0], t[1], t[2]));
+    r.c[3 * k] = c.x, r.c[3 * k + 1] = c.y, r.c[3 * k + 2] = c.z;
+  }
+  return r;
+}
+}  // namespace
+
+ShIrradiance shIrradianceEmu(const emu::Texture& env, const emu::DeviceProfile& dev) {
+  checkInput(env);
+  using I = emu::I32<8>;
+  const int32_t w = int32_t(env.width()), h = int32_t(env.height());
+  std::vector<float> rows(size_t(h) * 9 * 4, 0.0f);
+  const shade::Sampler2D s = environmentSampler(env, dev, true);  // texelFetch ignores the sampler state
+  tbb::parallel_for(tbb::blocked_range<int32_t>(0, (h + 7) / 8, 1), [&](const tbb::blocked_range<int32_t>& r) {
+    emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
+    for (int32_t b = r.begin(); b != r.end(); ++b) {
+      I y;
+      for (int l = 0; l < 8; ++l) y.set(l, std::min(b * 8 + l, h - 1));  // tail lanes repeat the last row
+      const auto c = shade::x8::shProjectRow(s, y, w, h);
+      const shade::V3<emu::F32<8>> cs[9] = {c.c0, c.c1, c.c2, c.c3, c.c4, c.c5, c.c6, c.c7, c.c8};
+      for (int l = 0; l < 8 && b * 8 + l < h; ++l)
+        for (int k = 0; k < 9; ++k) {
+          float* o = &rows[4 * (size_t(b * 8 + l) * 9 + size_t(k))];
+          o[0] = cs[k].x[l], o[1] = cs[k].y[l], o[2] = cs[k].z[l];
+        }
+    }
+  });
+  emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
+  return reduceRows(rows, uint32_t(h));
+}
+
+ShIrradiance shIrradianceVulkan(vk::Context& ctx, const emu::Texture& env) {
+  checkInput(env);
+  const uint32_t w = env.width(), h = env.height();
+  vk::Image img(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, w, h, 1, env.levels(), 16, VK_IMAGE_VIEW_TYPE_2D);
+  vk::Sampler sampler(ctx, environmentSamplerInfo(true));  // texelFetch ignores the sampler state
+  vk::Buffer rows(ctx, size_t(h) * 9 * 16), out(ctx, 9 * 16);
+  static constexpr VkDescriptorType kProject[2] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  static constexpr VkDescriptorType kReduce[2] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  vk::Kernel project(ctx, vk::Stage::Compute, kSpv_sh_project_comp, kProject, sizeof(ProjectPush));
+  vk::Kernel reduce(ctx, vk::Stage::Compute, kSpv_sh_reduce_comp, kReduce, sizeof(ReducePush));
+  const ProjectPush pp{int32_t(w), int32_t(h)};
+  const vk::Binding bp[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, img.view(), sampler.handle()},
+                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rows.handle()}};
+  project.run(bp, &pp, h);
+  const ReducePush rp{h};
+  const vk::Binding br[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rows.handle()}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, out.handle()}};
+  reduce.run(br, &rp, 9);
+  ShIrradiance r;
+  const float* o = out.as<float>();
+  for (int k = 0; k < 9; ++k) std::memcpy(&r.c[3 * size_t(k)], o + 4 * k, 12);
+  return r;
+}
+
+std::array<float, 3> shIrradianceAt(const ShIrradiance& sh, const std::array<float, 3>& n) {
+  V3f c[9];
+  for (int k = 0; k < 9; ++k) c[k] = V3f(sh.c[3 * size_t(k)], sh.c[3 * size_t(k) + 1], sh.c[3 * size_t(k) + 2]);
+  const V3f e = shade::scalar::shIrradiance(shade::scalar::ShRgb{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8]},
+                                            V3f(n[0], n[1], n[2]));
+  return {e.x, e.y, e.z};
+}
+
+}  // namespace shadetwin

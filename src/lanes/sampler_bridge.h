@@ -1,0 +1,84 @@
+// C++ side of `textureLod` in the shared dialect: a Sampler2D is an emulated texture + sampler +
+// device profile, and a lookup runs through the emulated texture unit (emu/sampler.h). In the SIMD
+// builds the N lanes are one device vector (lavapipe: 8 invocations), so the per-vector decisions of
+// the device's sampler are reproduced; the scalar build is the one-lane model. GLSL: sampler2D.
+#pragma once
+#include <cstring>
+
+#include "emu/lanes.h"
+#include "emu/sampler.h"
+#include "lanes/vec.h"
+
+namespace shadetwin::shade {
+
+struct Sampler2D {
+  const emu::Texture* tex = nullptr;
+  emu::SamplerDesc desc;
+  const emu::DeviceProfile* dev = nullptr;
+};
+
+inline V4<float> textureLodLanes(const Sampler2D& s, float u, float v, float lod, float layer = 0.0f) {
+  emu::Texel4 t = emu::textureLod(*s.tex, s.desc, *s.dev, u, v, layer, lod);
+  return V4<float>(t.r, t.g, t.b, t.a);
+}
+
+template <int N>
+V4<emu::F32<N>> textureLodLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v, emu::F32<N> lod,
+                                emu::F32<N> layer = emu::F32<N>(0.0f)) {
+  float q[4 * N], out[4 * N];
+  for (int i = 0; i < N; ++i) {
+    q[4 * i] = u[i];
+    q[4 * i + 1] = v[i];
+    q[4 * i + 2] = layer[i];
+    q[4 * i + 3] = lod[i];
+  }
+  emu::textureLodVector(*s.tex, s.desc, *s.dev, q, out, N);
+  V4<emu::F32<N>> r;
+  for (int i = 0; i < N; ++i) {
+    r.x.set(i, out[4 * i]);
+    r.y.set(i, out[4 * i + 1]);
+    r.z.set(i, out[4 * i + 2]);
+    r.w.set(i, out[4 * i + 3]);
+  }
+  return r;
+}
+
+/// texelFetch(sampler2D, ivec2(x, y), level): the stored texel, converted from its format.
+inline V4<float> texelFetchLanes(const Sampler2D& s, int32_t x, int32_t y, int level) {
+  emu::Texel4 t = emu::texelFetch(*s.tex, x, y, 0, level);
+  return V4<float>(t.r, t.g, t.b, t.a);
+}
+
+template <int N>
+V4<emu::F32<N>> texelFetchLanes(const Sampler2D& s, emu::I32<N> x, emu::I32<N> y, int level) {
+  V4<emu::F32<N>> r;
+  for (int i = 0; i < N; ++i) {
+    emu::Texel4 t = emu::texelFetch(*s.tex, x[i], y[i], 0, level);
+    r.x.set(i, t.r);
+    r.y.set(i, t.g);
+    r.z.set(i, t.b);
+    r.w.set(i, t.a);
+  }
+  return r;
+}
+
+/// texture() with implicit LOD: the lanes are 2x2 quads in groups of four (top-left, top-right,
+/// bottom-left, bottom-right), as a fragment stage runs them; each quad's LOD comes from its own
+/// coordinates (emu::implicitLod, per the profile), then the N lanes sample as one device vector.
+/// There is no scalar form: a lone pixel has no derivatives (using texture() in the scalar build is
+/// a compile error).
+template <int N>
+V4<emu::F32<N>> textureImplicitLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v) {
+  static_assert(N % 4 == 0, "texture() needs whole 2x2 quads of lanes");
+  emu::F32<N> lod;
+  for (int g = 0; g < N; g += 4) {
+    const float su[4] = {u[g], u[g + 1], u[g + 2], u[g + 3]}, sv[4] = {v[g], v[g + 1], v[g + 2], v[g + 3]};
+    const float l = emu::implicitLod(*s.tex, s.desc, *s.dev, su, sv);
+    for (int i = g; i < g + 4; ++i) lod.set(i, l);
+  }
+  Sampler2D perQuad = s;
+  perQuad.desc.lodPerQuad = true;
+  return textureLodLanes(perQuad, u, v, lod);
+}
+
+}  // namespace shadetwin::shade

@@ -1,0 +1,219 @@
+#include "passes/shade.h"
+
+#include <cmath>
+
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "emu/fpenv.h"
+#include "inputs/material.h"
+#include "lanes/instantiate.h"
+#include "util/timer.h"
+
+namespace shadetwin {
+
+// Host set-up in double (the promotions spelled out: this file forbids implicit ones).
+CameraRays cameraRays(const Scene& scene) {
+  const CameraBasis b = scene.basis();
+  const double t = std::tan(double(scene.camera.fovY) * 3.14159265358979323846 / 360.0);
+  const double aspect = double(scene.width) / scene.height;
+  CameraRays r;
+  for (int k = 0; k < 3; ++k) {
+    r.eye[k] = scene.camera.eye[k];
+    r.fwd[k] = b.forward[size_t(k)];
+    r.right[k] = float(double(b.right[size_t(k)]) * t * aspect);
+    r.down[k] = float(double(-b.up[size_t(k)]) * t);
+  }
+  return r;
+}
+
+std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev) {
+  std::vector<float> out;
+  shadeEmu(scene, g, in, dev, out);
+  return out;
+}
+
+shade::Sampler2D environmentSampler(const emu::Texture& tex, const emu::DeviceProfile& dev, bool repeatU) {
+  shade::Sampler2D s;
+  s.tex = &tex;
+  s.dev = &dev;
+  s.desc.addressU = repeatU ? emu::AddressMode::Repeat : emu::AddressMode::ClampToEdge;
+  s.desc.addressV = emu::AddressMode::ClampToEdge;
+  return s;
+}
+
+shade::Sampler2D materialMapSampler(const emu::Texture& tex, const emu::DeviceProfile& dev) {
+  shade::Sampler2D s = environmentSampler(tex, dev, true);
+  s.desc.addressV = emu::AddressMode::Repeat;
+  return s;
+}
+
+uint32_t fisMode(const Scene& scene) {
+  if (scene.technique == "unfiltered") return shade::scalar::kFisUnfiltered;
+  if (scene.technique == "stochastic") return shade::scalar::kFisStochastic;
+  return shade::scalar::kFisFiltered;
+}
+
+float fisLevelConstant(const Scene& scene) {
+  const double S = scene.fisFaceSize;
+  return float(std::log2(double(scene.fisK) * S * S / double(scene.fisSamples)));
+}
+
+namespace {
+using F8 = emu::F32<8>;
+using V3x = shade::V3<F8>;
+using V4x = shade::V4<F8>;
+
+// One device vector of a shading pass: 8 consecutive pixels of the G-buffer (tail lanes repeat the
+// last pixel, as the GPU's tail invocations do), their material slots and camera rays.
+struct PixelBlock {
+  V4x g0, g1, g2, g3;
+  V3x eye, ray;
+  emu::U32<8> pixel;  // row-major pixel index (tail lanes: the last pixel)
+  uint32_t slot[8];
+};
+
+V3x splat(const float v[3]) { return V3x(F8(v[0]), F8(v[1]), F8(v[2])); }
+
+// The compute-stage loop shared by the techniques: TBB over blocks of 8 pixels in the device's
+// denormal mode; shade(block) returns the 4 output floats of each lane.
+template <class Shade>
+void shadePixelBlocks(const Scene& scene, const GBuffer& g, const emu::DeviceProfile& dev, size_t grain,
+                      uint32_t materialCount, std::vector<float>& out, Shade shade) {
+  const size_t n = size_t(g.width) * g.height;
+  out.resize(4 * n);
+  const CameraRays cam = cameraRays(scene);
+  const F8 invW(1.0f / float(g.width)), invH(1.0f / float(g.height));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + 7) / 8, grain), [&](const tbb::blocked_range<size_t>& r) {
+    emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
+    for (size_t b = r.begin(); b != r.end(); ++b) {
+      PixelBlock p;
+      F8 px, py;
+      for (int l = 0; l < 8; ++l) {
+        const size_t i = std::min(b * 8 + size_t(l), n - 1);
+        const float* t = g.texels.data() + i * kGbufFloats;
+        p.g0.x.set(l, t[0]), p.g0.y.set(l, t[1]), p.g0.z.set(l, t[2]), p.g0.w.set(l, t[3]);
+        p.g1.x.set(l, t[4]), p.g1.y.set(l, t[5]), p.g1.z.set(l, t[6]), p.g1.w.set(l, t[7]);
+        p.g2.x.set(l, t[8]), p.g2.y.set(l, t[9]), p.g2.z.set(l, t[10]), p.g2.w.set(l, t[11]);
+        p.g3.x.set(l, t[12]), p.g3.y.set(l, t[13]), p.g3.z.set(l, t[14]), p.g3.w.set(l, t[15]);
+        p.slot[l] = shade::scalar::materialSlot(t[3], materialCount);
+        p.pixel.set(l, uint32_t(i));
+        px.set(l, float(i % g.width));
+        py.set(l, float(i / g.width));
+      }
+      p.eye = splat(cam.eye);
+      p.ray = shade::x8::cameraRay(splat(cam.fwd), splat(cam.right), splat(cam.down), px, py, invW, invH);
+      const V4x c = shade(p);
+      for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
+        float* o = &out[4 * (b * 8 + size_t(l))];
+        o[0] = c.x[l], o[1] = c.y[l], o[2] = c.z[l], o[3] = c.w[l];
+      }
+    }
+  });
+}
+
+// Each lane's material record (inputs/material.h), gathered into lanes; surface() is the shared
+// shade/material.h step (BRDF parameters unpacked, maps applied), as the GLSL entry points do it.
+struct LaneMaterials {
+  V3x diffuse, specular;
+  shade::x8::BrdfParams brdf;
+  emu::U32<8> maps[3];
+};
+LaneMaterials laneMaterials(const PixelBlock& p, const std::vector<MaterialGpu>& table) {
+  V4x v[6];  // diffuse, specular, brdf, lobe0, lobe1, rho
+  emu::U32<8> kind(0u), maps[3];
+  for (int l = 0; l < 8; ++l) {
+    const MaterialGpu& m = table[p.slot[l]];
+    const float* src[6] = {m.diffuse, m.specular, m.brdf, m.lobe0, m.lobe1, m.rho};
+    for (int k = 0; k < 6; ++k) v[k].x.set(l, src[k][0]), v[k].y.set(l, src[k][1]), v[k].z.set(l, src[k][2]), v[k].w.set(l, src[k][3]);
+    kind.set(l, m.kind[0]);
+    for (int k = 0; k < 3; ++k) maps[k].set(l, m.maps[k]);
+  }
+  return {V3x(v[0].x, v[0].y, v[0].z), V3x(v[1].x, v[1].y, v[1].z),
+          shade::x8::brdfParamsPacked(kind, v[2], v[3], v[4], v[5]), {maps[0], maps[1], maps[2]}};
+}
+shade::x8::SurfaceMaterial surface(const PixelBlock& p, const std::vector<MaterialGpu>& table, const shade::Sampler2D& maps) {
+  const LaneMaterials m = laneMaterials(p, table);
+  return shade::x8::surfaceMaterial(maps, m.diffuse, m.specular, m.brdf, m.maps[0], m.maps[1], m.maps[2], p.g1, p.g2, p.g3);
+}
+
+// Technique env: the light loop of shade_env.comp (light 0 first, one envAddLight each).
+void shadeEnvEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                 std::vector<float>& out) {
+  const shade::Sampler2D s = environmentSampler(*in.environment, dev, true);
+  const F8 intensity(scene.environmentIntensity);
+  const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);
+  const std::vector<MaterialGpu> mats = materialRecords(scene, true);
+  const std::vector<float>& L = in.lights.data;
+  shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
+    const auto m = surface(p, mats, maps);
+    V3x sum(F8(0.0f), F8(0.0f), F8(0.0f));
+    const emu::Mask<8> geometry = p.g0.w != F8(0.0f);
+    if (anyLane(geometry)) {  // IF_ANY, as shade_env.comp's per-invocation if
+      const auto F = shade::x8::envFrame(p.g0, p.g1, p.g2, p.eye);
+      for (uint32_t j = 0; j < in.lights.count; ++j)
+        sum = shade::x8::envAddLight(sum, F, m.brdf, m.diffuse, m.specular, splat(&L[8 * j]), splat(&L[8 * j + 4]));
+    }
+    return shade::x8::envFinish(s, p.g0, p.ray, sum, intensity);
+  });
+}
+
+void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                 std::vector<float>& out) {
+  const emu::Texture& atlas = *in.atlas;
+  const shade::Sampler2D s = environmentSampler(atlas, dev, false);  // the atlas clamps in u too
+  const F8 maxLod(float(atlas.levelCount() - 1)), levelC(fisLevelConstant(scene)), bias(scene.fisLevelBias),
+      intensity(scene.environmentIntensity);
+  V3x c[9];
+  for (int k = 0; k < 9; ++k) c[k] = splat(&in.sh.c[3 * size_t(k)]);
+  const shade::x8::ShRgb sh{c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7], c[8]};
+  const uint32_t mode = fisMode(scene);
+  const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);
+  const std::vector<MaterialGpu> mats = materialRecords(scene, true);
+  shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
+    const auto m = surface(p, mats, maps);
+    return shade::x8::shadeFis(s, mode, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.pixel, p.g0, p.g1, p.g2,
+                               p.eye, p.ray, m.diffuse, m.specular, m.brdf);
+  });
+}
+// Techniques *-mis: shade_env_mis.comp's shadeEnvMis over the environment and its sampler's tables.
+void shadeMisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                 std::vector<float>& out) {
+  const shade::Sampler2D env = environmentSampler(*in.environment, dev, true);
+  const shade::Sampler2D table = environmentSampler(*in.envTables->table, dev, false);
+  const shade::Sampler2D texels = environmentSampler(*in.envTables->texels, dev, false);
+  const EnvSamplingUniforms& u = in.envTables->uniforms;
+  const auto es = toEnvSampling<shade::x8::EnvSampling>(u);
+  const shade::x8::MisSettings ms{scene.misHeuristic, scene.misSamples, scene.misFrame, scene.misSeed};
+  const F8 intensity(scene.environmentIntensity);
+  const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);
+  const std::vector<MaterialGpu> mats = materialRecords(scene, true);
+  shadePixelBlocks(scene, g, dev, 4, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
+    const auto m = surface(p, mats, maps);
+    return shade::x8::shadeEnvMis(env, table, texels, es, ms, intensity, p.pixel, p.g0, p.g1, p.g2, p.eye, p.ray, m.diffuse,
+                                  m.specular, m.brdf);
+  });
+}
+}  // namespace
+
+void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+              std::vector<float>& out) {
+  if (usesFisPass(scene.technique)) return shadeFisEmu(scene, g, in, dev, out);
+  if (usesMisPass(scene.technique)) return shadeMisEmu(scene, g, in, dev, out);
+  if (scene.technique == "env") return shadeEnvEmu(scene, g, in, dev, out);
+  const emu::Texture& env = *in.environment;
+  const shade::Sampler2D envS = environmentSampler(env, dev, true);
+  const F8 maxLod(float(env.levelCount() - 1)), intensity(scene.environmentIntensity);
+  const std::vector<MaterialGpu> mats = materialRecords(scene, false);
+  shadePixelBlocks(scene, g, dev, 64, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
+    const LaneMaterials m = laneMaterials(p, mats);
+    return shade::x8::shadeMirror(envS, maxLod, intensity, p.g0, p.g1, p.eye, p.ray, m.diffuse, m.specular);
+  });
+}
+
+}  // namespace shadetwin

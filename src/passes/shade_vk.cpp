@@ -1,0 +1,210 @@
+// The shading pass on a Vulkan device: the compute kernel src/shaders/shade_mirror.comp (the shared
+// shade/shade_mirror.h) over a G-buffer uploaded from the host, the environment as a sampler2D with
+// its MIP chain and the same sampler state as the emulator's (repeat in u, clamp in v, trilinear).
+#include <chrono>
+#include <cstddef>
+#include <cstring>
+
+#include "emu/format.h"
+#include "inputs/material.h"
+#include "passes/passes_vk.h"
+
+namespace shadetwin {
+namespace {
+#include "shade_mirror_comp.inc"
+#include "shade_fis_comp.inc"
+#include "shade_env_comp.inc"
+#include "shade_env_mis_comp.inc"
+
+// One push block for both kernels: shade_mirror.comp declares the first 96 bytes (its last uint is
+// padding), shade_fis.comp all 112.
+struct ShadePush {
+  float eye[4], fwd[4], right[4], down[4];
+  float invW, invH, maxLod, intensity;
+  uint32_t width, count, materialCount, sampleCount;
+  float levelConstant, levelBias;
+  uint32_t mode, pad;
+};
+static_assert(offsetof(ShadePush, levelConstant) == 96, "the first 96 bytes are shade_mirror.comp's push block");
+static_assert(sizeof(ShadePush) == 112, "ShadePush must match the push block of shade_fis.comp");
+// What each kernel binds: mirror reads 96 push bytes, 4 bindings, {diffuse, specular} of the material
+// records (inputs/material.h, 32-byte stride) and the equirectangular map; fis all 112 bytes, binding
+// 4 = SH coefficients and 5 = material maps, the atlas (clamped in u); env 96 bytes (sampleCount =
+// light count), binding 4 = lights and 5 = material maps, the equirectangular map. fis and env read
+// whole 128-byte material records and G0..G3 (64 bytes per pixel), mirror G0, G1. The MIS kernel:
+// 96 bytes, binding 4 = MisSettingsGpu, 5 = material maps, 6 and 7 = the sampler's tables.
+struct KernelInfo {
+  std::span<const uint32_t> spirv;
+  uint32_t bindings;
+  size_t pushBytes;
+  bool brdf, repeatU;
+};
+KernelInfo kernelInfo(const std::string& technique) {
+  if (usesFisPass(technique)) return {kSpv_shade_fis_comp, 6, sizeof(ShadePush), true, false};
+  if (technique == "env") return {kSpv_shade_env_comp, 6, offsetof(ShadePush, levelConstant), true, true};
+  if (usesMisPass(technique)) return {kSpv_shade_env_mis_comp, 8, offsetof(ShadePush, levelConstant), true, true};
+  return {kSpv_shade_mirror_comp, 4, offsetof(ShadePush, levelConstant), false, true};
+}
+
+VkSamplerCreateInfo materialMapSamplerInfo() {
+  VkSamplerCreateInfo si = environmentSamplerInfo(true);
+  si.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  return si;
+}
+
+// Binding 4 of shade_env_mis.comp: shade/env_sampling.h EnvSampling, then shade/shade_env_mis.h MisSettings.
+struct MisSettingsGpu {
+  EnvSamplingUniforms sampling;
+  uint32_t heuristic, sampleCount, frame, seed;
+};
+static_assert(sizeof(MisSettingsGpu) == 48, "MisSettingsGpu must match the Settings block of shade_env_mis.comp");
+
+const emu::Texture& whiteTexture() {
+  static const emu::Texture t = materialMapsEmu(MaterialMapImages{});
+  return t;
+}
+}  // namespace
+
+struct ShadePassVk::Impl {
+  vk::Context& ctx;
+  const Scene& scene;
+  vk::Image env;
+  vk::Sampler sampler;
+  vk::Buffer materials;
+  std::vector<MaterialGpu> records;
+  uint32_t kinds[1];  // specialization constant 0: kSceneBrdfKinds
+  vk::Kernel kernel;
+  float envMaxLod;
+  vk::Buffer extra;  // binding 4: fis, 9 vec4 of E/pi coefficients; env, the lights
+  vk::Image maps;    // binding 5 (fis, env): material maps
+  vk::Sampler mapSampler;
+  std::unique_ptr<vk::Image> table, texels;  // *-mis: the environment sampler's tables (bindings 6, 7)
+  vk::Sampler tableSampler;
+  std::unique_ptr<vk::Buffer> gbuf, out;
+  static constexpr VkDescriptorType kLayout[8] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  const EnvSamplingTables* envTables;
+  KernelInfo info;
+  bool fis;
+  uint32_t lightCount;
+  size_t materialStride() const { return info.brdf ? sizeof(MaterialGpu) : offsetof(MaterialGpu, brdf); }
+  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in)
+      : Impl(c, s, in, in.texture(), in.maps ? *in.maps : whiteTexture(), kernelInfo(s.technique)) {}
+  Impl(vk::Context& c, const Scene& s, const ShadeInputs& in, const emu::Texture& tex, const emu::Texture& mapTex,
+       const KernelInfo& ki)
+      : ctx(c), scene(s),
+        env(c, VK_FORMAT_R32G32B32A32_SFLOAT, tex.width(), tex.height(), 1, tex.levels(), 16, VK_IMAGE_VIEW_TYPE_2D),
+        sampler(c, environmentSamplerInfo(ki.repeatU)),
+        materials(c, std::max<size_t>(1, s.materials.size()) * sizeof(MaterialGpu)),
+        records(materialRecords(s, ki.brdf)), kinds{brdfKindsOf(records)},
+        kernel(c, vk::Stage::Compute, ki.spirv, std::span<const VkDescriptorType>(kLayout, ki.bindings), uint32_t(ki.pushBytes),
+               {}, std::span<const uint32_t>(kinds, ki.brdf ? 1 : 0)),
+        envMaxLod(float(tex.levelCount() - 1)), extra(c, std::max<size_t>(9 * 16, in.lights.data.size() * 4)),
+        maps(c, VK_FORMAT_R32G32B32A32_SFLOAT, mapTex.width(), mapTex.height(), mapTex.layers(), mapTex.levels(), 16,
+             VK_IMAGE_VIEW_TYPE_2D_ARRAY),
+        mapSampler(c, materialMapSamplerInfo()),
+        table(in.envTables ? dataTextureImage(c, *in.envTables->table) : nullptr),
+        texels(in.envTables ? dataTextureImage(c, *in.envTables->texels) : nullptr), tableSampler(c, dataTextureSamplerInfo()),
+        envTables(in.envTables.get()), info(ki),
+        fis(usesFisPass(s.technique)), lightCount(in.lights.count) {
+    if (fis)
+      for (int k = 0; k < 9; ++k) {
+        float* d = extra.as<float>() + 4 * k;
+        std::memcpy(d, &in.sh.c[3 * size_t(k)], 12);
+        d[3] = 0.0f;
+      }
+    else if (!in.lights.data.empty())
+      std::memcpy(extra.data(), in.lights.data.data(), in.lights.data.size() * 4);
+    if (tex.format() != emu::Format::RGBA32F || mapTex.format() != emu::Format::RGBA32F)
+      throw vk::Error("shading pass: the environment and the material maps must be RGBA32F");
+    for (size_t i = 0; i < records.size(); ++i)
+      std::memcpy(materials.as<uint8_t>() + i * materialStride(), &records[i], materialStride());
+  }
+};
+
+ShadePassVk::ShadePassVk(vk::Context& ctx, const Scene& scene, const ShadeInputs& in)
+    : impl_(std::make_unique<Impl>(ctx, scene, in)) {}
+ShadePassVk::~ShadePassVk() = default;
+
+std::vector<float> ShadePassVk::run(const GBuffer& g) {
+  Impl& m = *impl_;
+  const size_t n = size_t(g.width) * g.height;
+  const size_t stride = m.info.brdf ? 64 : 32;  // G0, G1 (+ G2, G3: tangent, uv derivatives, for fis and env)
+  if (!m.gbuf || m.gbuf->size() < n * stride) {
+    m.gbuf = std::make_unique<vk::Buffer>(m.ctx, n * stride);
+    m.out = std::make_unique<vk::Buffer>(m.ctx, n * 16);
+  }
+  float* dst = m.gbuf->as<float>();
+  for (size_t p = 0; p < n; ++p) std::memcpy(dst + stride / 4 * p, g.texels.data() + p * kGbufFloats, stride);
+  const CameraRays cam = cameraRays(m.scene);
+  const vk::Binding b[8] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
+                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.gbuf->handle()},
+                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.materials.handle()},
+                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.out->handle()},
+                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.extra.handle()},
+                            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.maps.view(), m.mapSampler.handle()},
+                            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.table ? m.table->view() : VK_NULL_HANDLE,
+                             m.tableSampler.handle()},
+                            {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.texels ? m.texels->view() : VK_NULL_HANDLE,
+                             m.tableSampler.handle()}};
+  if (m.info.bindings == 8) {  // the MIS kernel: its settings, the frame's included, in binding 4
+    if (!m.envTables) throw vk::Error("shading pass: technique " + m.scene.technique + " needs its environment sampler's tables");
+    const MisSettingsGpu st{m.envTables->uniforms, m.scene.misHeuristic, m.scene.misSamples, m.scene.misFrame, m.scene.misSeed};
+    std::memcpy(m.extra.data(), &st, sizeof st);
+  }
+  ShadePush push{};
+  std::memcpy(push.eye, cam.eye, 12);
+  std::memcpy(push.fwd, cam.fwd, 12);
+  std::memcpy(push.right, cam.right, 12);
+  std::memcpy(push.down, cam.down, 12);
+  push.invW = 1.0f / float(g.width);
+  push.invH = 1.0f / float(g.height);
+  push.maxLod = m.envMaxLod;
+  push.intensity = m.scene.environmentIntensity;
+  push.width = g.width;
+  push.count = uint32_t(n);
+  push.materialCount = uint32_t(std::max<size_t>(1, m.scene.materials.size()));
+  if (m.fis) {
+    push.sampleCount = m.scene.fisSamples;
+    push.levelConstant = fisLevelConstant(m.scene);
+    push.levelBias = m.scene.fisLevelBias;
+    push.mode = fisMode(m.scene);
+  } else if (m.scene.technique == "env") {
+    push.sampleCount = m.lightCount;
+  }
+  auto t0 = std::chrono::steady_clock::now();
+  m.kernel.run(std::span<const vk::Binding>(b, m.info.bindings), &push, uint32_t(n));
+  lastMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::vector<float> out(4 * n);
+  std::memcpy(out.data(), m.out->data(), out.size() * 4);
+  return out;
+}
+
+VkSamplerCreateInfo dataTextureSamplerInfo() {
+  VkSamplerCreateInfo si = environmentSamplerInfo(false);
+  si.magFilter = si.minFilter = VK_FILTER_NEAREST;  // texelFetch only; R32F needs no linear-filter support
+  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  return si;
+}
+
+std::unique_ptr<vk::Image> dataTextureImage(vk::Context& c, const emu::Texture& t) {
+  const bool r32 = t.format() == emu::Format::R32F;
+  if (!r32 && t.format() != emu::Format::RGBA32F) throw vk::Error("data texture: expected R32F or RGBA32F");
+  return std::make_unique<vk::Image>(c, r32 ? VK_FORMAT_R32_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT, t.width(), t.height(), 1,
+                                     t.levels(), r32 ? 4 : 16, VK_IMAGE_VIEW_TYPE_2D);
+}
+
+VkSamplerCreateInfo environmentSamplerInfo(bool repeatU) {
+  VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  si.magFilter = si.minFilter = VK_FILTER_LINEAR;
+  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  si.addressModeU = repeatU ? VK_SAMPLER_ADDRESS_MODE_REPEAT : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  si.minLod = 0.0f;
+  si.maxLod = 1000.0f;
+  return si;
+}
+
+}  // namespace shadetwin
