@@ -254,6 +254,61 @@ TEST(Raster, ClipperDiscardsNonFiniteAndOutsideTriangles) {
   EXPECT_EQ(st.fragments, 0u);
 }
 
+TEST(Raster, DepthOnlyRowPathEqualsTheQuadLoop) {
+  // A depth-only draw (no fragment shader) takes the 8-pixel row path; the same draw with a fragment
+  // shader that writes nothing (0 outputs) takes the quad loop. Depth buffers must be equal bit for
+  // bit, and so must the counted quads and fragments: many seeds, target sizes that are and are not
+  // multiples of 8 and of the 64-pixel tile, overlapping triangles of every size (the depth test
+  // in submission order), triangles crossing the target's edges, fused and separate plane equations.
+  const uint32_t sizes[][2] = {{64, 64}, {100, 37}, {257, 129}, {1024, 24}, {8, 300}, {3, 5}};
+  for (const int variant : {0, 1, 2}) {  // lavapipe (fused, draw-module clipper), separate mul + add, guard band
+    const bool fused = variant != 1;
+    emu::DeviceProfile p = dev();
+    p.raster.interpFma = fused;
+    if (variant == 2) p.raster.clip = emu::DeviceProfile::Raster::Clip::GuardBand;  // triangles reach past the edges
+    for (uint32_t seed = 1; seed <= 24; ++seed) {
+      const uint32_t W = sizes[seed % 6][0], H = sizes[seed % 6][1];
+      std::mt19937 rng(seed);
+      std::uniform_real_distribution<float> U(-0.3f, 1.3f), Z(0.0f, 1.0f);
+      const size_t tris = 40 + seed * 7;
+      std::vector<float> clip;
+      std::vector<uint32_t> idx;
+      for (size_t t = 0; t < tris; ++t) {  // t counts triangles, repeats included
+        // Mostly small triangles near a random centre, some large ones.
+        const float cx = U(rng) * float(W), cy = U(rng) * float(H);
+        const float r = (t % 5 == 0 ? 0.7f : 0.06f) * float(std::max(W, H));
+        for (int k = 0; k < 3; ++k) {
+          float c[4];
+          clipOf(cx + r * (U(rng) - 0.5f), cy + r * (U(rng) - 0.5f), Z(rng), W, H, c);
+          idx.push_back(uint32_t(clip.size() / 4));
+          clip.insert(clip.end(), c, c + 4);
+        }
+        if (t % 7 == 0) {  // the same triangle again: equal depths, where less-or-equal passes
+          for (int k = 0; k < 3; ++k) idx.push_back(idx[idx.size() - 3]);
+          ++t;
+        }
+      }
+      emu::DrawInput in;
+      in.clip = clip.data();
+      in.indices = idx.data();
+      in.triangles = idx.size() / 3;
+      emu::Framebuffer a(W, H, 0), b(W, H, 0);
+      emu::RasterStats sa, sb;
+      emu::draw(p, a, in, emu::FragmentFn(), &sa);
+      emu::draw(p, b, in, [](const emu::Quad&, float (*)[4]) {}, &sb);
+      size_t firstDiff = a.depth.size();
+      for (size_t i = 0; i < a.depth.size() && firstDiff == a.depth.size(); ++i)
+        if (std::memcmp(&a.depth[i], &b.depth[i], 4) != 0) firstDiff = i;
+      ASSERT_EQ(firstDiff, a.depth.size()) << "seed " << seed << " variant " << variant << " " << W << "x" << H << ": pixel ("
+                                           << firstDiff % W << ", " << firstDiff / W << ") row path "
+                                           << a.depth[firstDiff % a.depth.size()] << ", quad loop " << b.depth[firstDiff % a.depth.size()];
+      EXPECT_EQ(sa.fragments, sb.fragments) << seed;
+      EXPECT_EQ(sa.quads, sb.quads) << seed;
+      EXPECT_GT(sa.fragments, 0u) << seed;
+    }
+  }
+}
+
 TEST(Raster, FragmentLanesSplitBlocksRunOncePerPrimitiveWithMaskedLanes) {
   // 8 x 4 target, lavapipe's 4 x 2 blocks, two primitives split along a staircase: block (0, 0) all
   // primitive 0, block (1, 0) split, row 2-3 blocks all primitive 1.
