@@ -29,6 +29,7 @@ void BM_ShadowEmu(benchmark::State& state) {
   }
   state.counters["maps"] = double(dirs.size());
   state.counters["fragments"] = double(stats.raster.fragments);
+  state.counters["quads"] = double(stats.raster.quads);
 }
 
 void BM_ShadowVulkan(benchmark::State& state) {
