@@ -138,10 +138,11 @@ V4<opcount::F<N>> textureLodLanes(const Sampler2D& s, opcount::F<N> u, opcount::
   return V4<opcount::F<N>>(opcount::F<N>(r.x), opcount::F<N>(r.y), opcount::F<N>(r.z), opcount::F<N>(r.w));
 }
 template <int N>
-V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::I<N> y, int level) {
+V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::I<N> y, int level,
+                                   opcount::I<N> layer = opcount::I<N>(0)) {
   opcount::tick(opcount::kTexLookup, N);
   opcount::tick(opcount::kTexel, N);
-  const V4<emu::F32<N>> r = texelFetchLanes(s, x.x, y.x, level);
+  const V4<emu::F32<N>> r = texelFetchLanes(s, x.x, y.x, level, layer.x);
   return V4<opcount::F<N>>(opcount::F<N>(r.x), opcount::F<N>(r.y), opcount::F<N>(r.z), opcount::F<N>(r.w));
 }
 }  // namespace shadetwin::shade

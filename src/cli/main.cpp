@@ -20,14 +20,15 @@ int main(int argc, char** argv) {
   shadetwin::VerifyOptions vo;
   auto* verify = app.add_subcommand("verify", "differential tests: emulator and C++ builds against a Vulkan device");
   verify->require_subcommand(1);
-  for (const char* what : {"math", "texture", "mips", "raster", "shadow", "shade", "frame", "paraboloid", "sh"}) {
+  for (const char* what : {"math", "texture", "mips", "raster", "shadow", "shade", "frame", "paraboloid", "sh", "visibility"}) {
     auto* sub = verify->add_subcommand(what, std::string("verify ") + what);
     sub->add_option("--count", vo.count, "inputs per function / lookups per configuration")->check(CLI::Range(1, 100000000));
     sub->add_option("--seed", vo.seed, "random seed");
     sub->add_option("--device", vo.device, "Vulkan device (substring of its name; default lavapipe)");
     sub->add_flag("--validate", vo.validate, "enable Vulkan validation layers; any error fails the run");
     const std::string w = what;
-    if (w == "raster" || w == "shadow" || w == "shade" || w == "frame" || w == "paraboloid" || w == "sh") {
+    if (w == "raster" || w == "shadow" || w == "shade" || w == "frame" || w == "paraboloid" || w == "sh" ||
+        w == "visibility") {
       sub->add_option("--scene", vo.scene, "scene file")->required();
       if (w != "shadow" && w != "paraboloid" && w != "sh") {
         sub->add_option("--width", vo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
@@ -37,6 +38,12 @@ int main(int argc, char** argv) {
     if (w == "shadow") {
       sub->add_option("--directions", vo.directions, "number of shadow-map directions")->check(CLI::Range(1, 4096));
       sub->add_option("--size", vo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
+    }
+    if (w == "visibility") {
+      sub->add_option("--maps", vo.directions, "K visibility directions (shadow maps), from the environment's luminance")
+          ->check(CLI::Range(1, 4096));
+      sub->add_option("--size", vo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
+      sub->add_flag("--fit-v", vo.visibilityV, "fit V alone instead of V max(0, n.w)");
     }
     if (w == "paraboloid")
       sub->add_option("--face-size", vo.faceSize, "face size S of the 2S x S atlas")->check(CLI::Range(4, 8192));
@@ -136,6 +143,7 @@ int main(int argc, char** argv) {
     if (verify->got_subcommand("mips")) return shadetwin::verifyMips(vo, std::cout);
     if (verify->got_subcommand("paraboloid")) return shadetwin::verifyParaboloid(vo, std::cout);
     if (verify->got_subcommand("sh")) return shadetwin::verifyShIrradiance(vo, std::cout);
+    if (verify->got_subcommand("visibility")) return shadetwin::verifyVisibility(vo, std::cout);
   } catch (const std::exception& e) {
     std::cerr << "shadetwin: error: " << e.what() << "\n";
     return 2;

@@ -43,17 +43,19 @@ V4<emu::F32<N>> textureLodLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v
   return r;
 }
 
-/// texelFetch(sampler2D, ivec2(x, y), level): the stored texel, converted from its format.
-inline V4<float> texelFetchLanes(const Sampler2D& s, int32_t x, int32_t y, int level) {
-  emu::Texel4 t = emu::texelFetch(*s.tex, x, y, 0, level);
+/// texelFetch(sampler2D, ivec2(x, y), level) (or of a 2D array at `layer`): the stored texel,
+/// converted from its format.
+inline V4<float> texelFetchLanes(const Sampler2D& s, int32_t x, int32_t y, int level, int32_t layer = 0) {
+  emu::Texel4 t = emu::texelFetch(*s.tex, x, y, layer, level);
   return V4<float>(t.r, t.g, t.b, t.a);
 }
 
 template <int N>
-V4<emu::F32<N>> texelFetchLanes(const Sampler2D& s, emu::I32<N> x, emu::I32<N> y, int level) {
+V4<emu::F32<N>> texelFetchLanes(const Sampler2D& s, emu::I32<N> x, emu::I32<N> y, int level,
+                                emu::I32<N> layer = emu::I32<N>(0)) {
   V4<emu::F32<N>> r;
   for (int i = 0; i < N; ++i) {
-    emu::Texel4 t = emu::texelFetch(*s.tex, x[i], y[i], 0, level);
+    emu::Texel4 t = emu::texelFetch(*s.tex, x[i], y[i], layer[i], level);
     r.x.set(i, t.r);
     r.y.set(i, t.g);
     r.z.set(i, t.b);

@@ -54,6 +54,8 @@ NativeResult nativeDiv(float a, float b) { return NativeResult(false, 0.0f); }
 NativeResult nativeSqrt(float x) { return NativeResult(false, 0.0f); }
 // texelFetch of a 2D texture with separate coordinates (the C++ side has no ivec2).
 vec4 texelFetch2D(sampler2D s, int x, int y, int level) { return texelFetch(s, ivec2(x, y), level); }
+// texelFetch of a 2D array texture with separate coordinates.
+vec4 texelFetchLayer(sampler2DArray s, int x, int y, int layer, int level) { return texelFetch(s, ivec3(x, y, layer), level); }
 // textureLod of a 2D array texture with the layer apart, and the size of its level 0 as floats.
 vec4 textureLodLayer(sampler2DArray s, vec2 uv, float layer, float lod) { return textureLod(s, vec3(uv, layer), lod); }
 vec2 textureSizeOf(sampler2DArray s) {
@@ -107,6 +109,9 @@ inline NativeResult nativeSqrt(Float x) { return ::shadetwin::shade::nativeSqrt(
 using Sampler2DArray = ::shadetwin::shade::Sampler2D;  // the emulated texture has layers
 inline Float4 textureLodLayer(const Sampler2DArray& s, Float2 uv, Float layer, Float lod) {
   return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod, layer);
+}
+inline Float4 texelFetchLayer(const Sampler2DArray& s, Int x, Int y, Int layer, int level) {
+  return ::shadetwin::shade::texelFetchLanes(s, x, y, level, layer);
 }
 inline Float2 textureSizeOf(const Sampler2DArray& s) { return Float2(Float(float(s.tex->width())), Float(float(s.tex->height()))); }
 inline Float4 texelFetch2D(const Sampler2D& s, Int x, Int y, int level) {

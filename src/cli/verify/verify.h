@@ -26,6 +26,7 @@ struct VerifyOptions {
   uint32_t shadowSize = 512;  // shadow: map resolution
   std::string technique;      // shade/frame: shading technique (default: the scene's)
   uint32_t faceSize = 256;    // paraboloid: face size S of the 2S x S atlas
+  bool visibilityV = false;   // visibility: fit V alone (default V max(0, n . w))
 };
 
 /// Returns the process exit status: 0 when everything is bit-identical, 1 otherwise.
@@ -42,6 +43,8 @@ int verifyShadow(const VerifyOptions& opts, std::ostream& out);
 int verifyParaboloid(const VerifyOptions& opts, std::ostream& out);
 /// Order-3 SH irradiance of the scene's environment (projection rows + reduction tree), emulator vs Vulkan build.
 int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out);
+/// SH visibility fit (issue 16) of both builds on the same G-buffer and shadow maps: 16 coefficients per pixel.
+int verifyVisibility(const VerifyOptions& opts, std::ostream& out);
 /// Shading pass of both builds on the same G-buffer (the Vulkan build's, read back): every channel.
 int verifyShade(const VerifyOptions& opts, std::ostream& out);
 /// Whole frames: emulator (G-buffer + shading) vs Vulkan build (G-buffer + shading).

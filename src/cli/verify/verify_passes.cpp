@@ -11,6 +11,7 @@
 #include "inputs/paraboloid.h"
 #include "inputs/sh_irradiance.h"
 #include "passes/passes_vk.h"
+#include "passes/visibility.h"
 #include "inputs/environment.h"
 #include "scene/scene.h"
 #include "cli/verify/verify.h"
@@ -152,6 +153,29 @@ int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out) {
   out << "E/pi(+y) = " << shIrradianceAt(e, {0, 1, 0})[1] << ", E/pi(-y) = " << shIrradianceAt(e, {0, -1, 0})[1]
       << " (green)\n";
   return finish("sh", printTallies({t}, out), *s.ctx, opts, out);
+}
+
+int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
+  Setup s = setUp(opts, out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
+  VisibilitySettings vs;
+  vs.maps = opts.directions;
+  vs.size = opts.shadowSize;
+  vs.fitCosine = !opts.visibilityV;
+  const VisibilitySetup v = visibilitySetup(s.scene, *env.texture, vs);
+  // Both builds fit the same inputs: the Vulkan build's G-buffer and the emulator's maps (verify
+  // raster and verify shadow check those stages).
+  const GBuffer g = gbufferVulkan(*s.ctx, s.scene);
+  const emu::Texture maps = shadowMapArray(shadowEmu(s.scene, v.directions, vs.size, *s.dev));
+  const VisibilityImage e = visibilityFitEmu(g, maps, v, *s.dev), k = visibilityFitVulkan(*s.ctx, g, maps, v);
+  out << vs.maps << " directions from the luminance of " << s.scene.environment
+      << (v.uniformFallback ? " (none positive: uniform)" : "") << ", maps " << vs.size << "x" << vs.size
+      << ", fit " << (vs.fitCosine ? "V max(0, n.w)" : "V") << ", rank of M " << v.rank << "/16\n";
+  std::vector<UlpTally> t;
+  for (int c = 0; c < 16; ++c) t.push_back({"c" + std::to_string(c)});
+  for (size_t i = 0; i < e.coeffs.size(); ++i) t[i % 16].add(e.coeffs[i], k.coeffs[i]);
+  return finish("visibility", printTallies(t, out), *s.ctx, opts, out);
 }
 
 }  // namespace shadetwin

@@ -1,0 +1,32 @@
+// The SH visibility fit pass (issue 16), both builds: per G-buffer pixel, the K shadow maps' tests
+// fitted by an order-4 SH (shade/visibility.h visFit), 16 floats per pixel. The emulator runs the
+// 8-lane build over blocks of 8 pixels (compute stage, TBB); Vulkan the compute shader
+// src/shaders/visibility_fit.comp, one invocation per pixel.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "emu/device_profile.h"
+#include "emu/texture.h"
+#include "inputs/visibility.h"
+#include "passes/gbuffer.h"
+#include "passes/shadow.h"
+#include "vk/context.h"
+
+namespace shadetwin {
+
+struct VisibilityImage {
+  uint32_t width = 0, height = 0;
+  std::vector<float> coeffs;  // 16 per pixel, rows top to bottom (shade/visibility.h Sh16 order)
+  const float* at(uint32_t x, uint32_t y) const { return coeffs.data() + (size_t(y) * width + x) * 16; }
+};
+
+/// The maps as one R32F 2D array texture, layer k = direction k (what the fit kernels sample).
+emu::Texture shadowMapArray(const ShadowMaps& maps);
+
+VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v,
+                                 const emu::DeviceProfile& dev);
+VisibilityImage visibilityFitVulkan(vk::Context& ctx, const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v);
+
+}  // namespace shadetwin

@@ -1,0 +1,55 @@
+#include "passes/visibility.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "emu/fpenv.h"
+#include "lanes/instantiate.h"
+#include "passes/shade.h"
+
+namespace shadetwin {
+
+emu::Texture shadowMapArray(const ShadowMaps& maps) {
+  const uint32_t S = maps.size, K = uint32_t(maps.maps.size());
+  if (K == 0 || S == 0) throw std::invalid_argument("visibility: no shadow maps");
+  std::vector<std::vector<uint8_t>> level(1, std::vector<uint8_t>(size_t(S) * S * K * 4));
+  for (uint32_t k = 0; k < K; ++k) std::memcpy(level[0].data() + size_t(k) * S * S * 4, maps.maps[k].data(), size_t(S) * S * 4);
+  return emu::Texture(emu::Format::R32F, S, S, K, std::move(level));
+}
+
+VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v,
+                                 const emu::DeviceProfile& dev) {
+  using F8 = emu::F32<8>;
+  using V3x = shade::V3<F8>;
+  VisibilityImage out;
+  out.width = g.width, out.height = g.height;
+  const size_t n = size_t(g.width) * g.height;
+  out.coeffs.assign(n * 16, 0.0f);
+  const shade::Sampler2D mapS = environmentSampler(maps, dev, false), dataS = environmentSampler(*v.data, dev, false);
+  const shade::x8::VisSettings s{uint32_t(maps.layers()), maps.width(), v.settings.fitCosine ? shade::x8::kVisFitVCos : shade::x8::kVisFitV,
+                                 v.biasConst, v.biasSlope};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + 7) / 8, 64), [&](const tbb::blocked_range<size_t>& r) {
+    emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
+    for (size_t b = r.begin(); b != r.end(); ++b) {
+      V3x p, nrm;
+      for (int l = 0; l < 8; ++l) {
+        const size_t i = std::min(b * 8 + size_t(l), n - 1);  // tail lanes repeat the last pixel
+        const float* t = g.texels.data() + i * kGbufFloats;
+        p.x.set(l, t[0]), p.y.set(l, t[1]), p.z.set(l, t[2]);
+        nrm.x.set(l, t[4]), nrm.y.set(l, t[5]), nrm.z.set(l, t[6]);
+      }
+      const shade::x8::Sh16 c = shade::x8::visFit(mapS, dataS, s, p, nrm);
+      const shade::V4<F8> q[4] = {c.a, c.b, c.c, c.d};
+      for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
+        float* o = &out.coeffs[(b * 8 + size_t(l)) * 16];
+        for (int j = 0; j < 4; ++j) o[4 * j] = q[j].x[l], o[4 * j + 1] = q[j].y[l], o[4 * j + 2] = q[j].z[l], o[4 * j + 3] = q[j].w[l];
+      }
+    }
+  });
+  return out;
+}
+
+}  // namespace shadetwin

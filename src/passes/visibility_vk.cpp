@@ -1,0 +1,40 @@
+#include <cstring>
+
+#include "passes/passes_vk.h"
+#include "passes/visibility.h"
+
+namespace shadetwin {
+namespace {
+#include "visibility_fit_comp.inc"
+
+struct FitPush {
+  uint32_t count, size, fit, pixels;
+  float biasConst, biasSlope;
+};
+static_assert(sizeof(FitPush) == 24, "FitPush must match the push block of visibility_fit.comp");
+}  // namespace
+
+VisibilityImage visibilityFitVulkan(vk::Context& ctx, const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v) {
+  const size_t n = size_t(g.width) * g.height;
+  vk::Buffer gbuf(ctx, n * 32), out(ctx, n * 64);
+  for (size_t i = 0; i < n; ++i) std::memcpy(gbuf.as<float>() + 8 * i, g.texels.data() + i * kGbufFloats, 32);  // G0, G1
+  vk::Image mapImg(ctx, VK_FORMAT_R32_SFLOAT, maps.width(), maps.height(), maps.layers(), maps.levels(), 4);
+  const std::unique_ptr<vk::Image> data = dataTextureImage(ctx, *v.data);
+  vk::Sampler sampler(ctx, dataTextureSamplerInfo());  // texelFetch only
+  static constexpr VkDescriptorType kLayout[4] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  vk::Kernel fit(ctx, vk::Stage::Compute, kSpv_visibility_fit_comp, kLayout, sizeof(FitPush));
+  const FitPush push{maps.layers(), maps.width(), v.settings.fitCosine ? 0u : 1u, uint32_t(n), v.biasConst, v.biasSlope};
+  const vk::Binding b[4] = {{kLayout[0], gbuf.handle()},
+                            {kLayout[1], VK_NULL_HANDLE, mapImg.view(), sampler.handle()},
+                            {kLayout[2], VK_NULL_HANDLE, data->view(), sampler.handle()},
+                            {kLayout[3], out.handle()}};
+  fit.run(b, &push, uint32_t(n));
+  VisibilityImage r;
+  r.width = g.width, r.height = g.height;
+  r.coeffs.resize(n * 16);
+  std::memcpy(r.coeffs.data(), out.as<float>(), n * 64);
+  return r;
+}
+
+}  // namespace shadetwin
