@@ -18,6 +18,7 @@
 #include "passes/gbuffer.h"
 #include "inputs/environment.h"
 #include "inputs/sh_irradiance.h"
+#include "inputs/visibility.h"
 #include "scene/scene.h"
 
 namespace {
@@ -118,6 +119,31 @@ TEST(ShIrradiance, ProjectionMatchesDoublePrecision) {
     const std::vector<double> ref = projectDouble(e);
     for (int i = 0; i < 27; ++i) EXPECT_NEAR(sh.c[i], ref[i], 1e-5 * std::fabs(ref[i % 3])) << scene << " coefficient " << i;
   }
+}
+
+TEST(ShIrradiance, Band3RadianceMatchesDoublePrecision) {
+  // Band 3 (raw radiance, the lighting of SH visibility's diffuse product) against the double sum with
+  // inputs/visibility.h's double basis; and 0 for a constant environment (up to the midpoint rule).
+  for (const char* scene : {"bunny.json", "materials.json"}) {
+    const EnvD e = loadEnv(scene);
+    const ShIrradiance sh = shadetwin::shIrradianceEmu(textureOf(e.texels, e.w, e.h), dev());
+    std::vector<double> ref(21, 0.0);
+    for (uint32_t y = 0; y < e.h; ++y)
+      for (uint32_t x = 0; x < e.w; ++x) {
+        double d[3], dw;
+        texelDir(x, y, e.w, e.h, d, dw);
+        const auto Y = shadetwin::sh16BasisDouble({float(d[0]), float(d[1]), float(d[2])});
+        const float* t = &e.texels[4 * (size_t(y) * e.w + x)];
+        for (int k = 9; k < 16; ++k)
+          for (int ch = 0; ch < 3; ++ch) ref[size_t(3 * (k - 9) + ch)] += t[ch] * Y[size_t(k)] * dw;
+      }
+    const std::vector<double> low = projectDouble(e);
+    for (int i = 0; i < 21; ++i) EXPECT_NEAR(sh.band3[size_t(i)], ref[size_t(i)], 2e-5 * std::fabs(low[size_t(i % 3)])) << scene << " " << i;
+  }
+  const uint32_t w = 128, h = 64;
+  std::vector<float> t(size_t(w) * h * 4, 1.0f);
+  const ShIrradiance c = shadetwin::shIrradianceEmu(textureOf(t, w, h), dev());
+  for (float x : c.band3) EXPECT_NEAR(x, 0.0f, 1e-3f);
 }
 
 TEST(ShIrradiance, ApproximatesBruteForceIrradiance) {

@@ -35,20 +35,21 @@ void checkInput(const emu::Texture& env) {
 
 using V3f = shade::V3<float>;
 
-// The pairwise tree of sh_reduce.comp over `rows` (9 vec4 per row, in place), then the band scale.
+// The pairwise tree of sh_reduce.comp over `rows` (16 vec4 per row, in place), then the band scale.
 ShIrradiance reduceRows(std::vector<float>& rows, uint32_t rowCount) {
   ShIrradiance r;
-  for (uint32_t k = 0; k < 9; ++k) {
+  for (uint32_t k = 0; k < 16; ++k) {
     for (uint32_t s = 1; s < rowCount; s *= 2)
       for (uint32_t i = 0; i + s < rowCount; i += 2 * s) {
-        float* a = &rows[4 * (i * 9 + k)];
-        const float* b = &rows[4 * ((i + s) * 9 + k)];
+        float* a = &rows[4 * (i * 16 + k)];
+        const float* b = &rows[4 * ((i + s) * 16 + k)];
         const V3f c = shade::scalar::shAdd3(V3f(a[0], a[1], a[2]), V3f(b[0], b[1], b[2]));
         a[0] = c.x, a[1] = c.y, a[2] = c.z;
       }
     const float* t = &rows[4 * k];
     const V3f c = shade::scalar::shIrradianceScale(k, V3f(t[0], t[1], t[2]));
-    r.c[3 * k] = c.x, r.c[3 * k + 1] = c.y, r.c[3 * k + 2] = c.z;
+    float* o = k < 9 ? &r.c[3 * k] : &r.band3[3 * (k - 9)];
+    o[0] = c.x, o[1] = c.y, o[2] = c.z;
   }
   return r;
 }
@@ -58,18 +59,21 @@ ShIrradiance shIrradianceEmu(const emu::Texture& env, const emu::DeviceProfile& 
   checkInput(env);
   using I = emu::I32<8>;
   const int32_t w = int32_t(env.width()), h = int32_t(env.height());
-  std::vector<float> rows(size_t(h) * 9 * 4, 0.0f);
+  std::vector<float> rows(size_t(h) * 16 * 4, 0.0f);
   const shade::Sampler2D s = environmentSampler(env, dev, true);  // texelFetch ignores the sampler state
   tbb::parallel_for(tbb::blocked_range<int32_t>(0, (h + 7) / 8, 1), [&](const tbb::blocked_range<int32_t>& r) {
     emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
     for (int32_t b = r.begin(); b != r.end(); ++b) {
       I y;
       for (int l = 0; l < 8; ++l) y.set(l, std::min(b * 8 + l, h - 1));  // tail lanes repeat the last row
-      const auto c = shade::x8::shProjectRow(s, y, w, h);
-      const shade::V3<emu::F32<8>> cs[9] = {c.c0, c.c1, c.c2, c.c3, c.c4, c.c5, c.c6, c.c7, c.c8};
+      const auto row = shade::x8::shProjectRow(s, y, w, h);
+      const auto& c = row.low;
+      const auto& hb = row.high;
+      const shade::V3<emu::F32<8>> cs[16] = {c.c0,   c.c1,   c.c2,   c.c3,   c.c4,   c.c5,   c.c6,   c.c7,
+                                             c.c8,   hb.c9,  hb.c10, hb.c11, hb.c12, hb.c13, hb.c14, hb.c15};
       for (int l = 0; l < 8 && b * 8 + l < h; ++l)
-        for (int k = 0; k < 9; ++k) {
-          float* o = &rows[4 * (size_t(b * 8 + l) * 9 + size_t(k))];
+        for (int k = 0; k < 16; ++k) {
+          float* o = &rows[4 * (size_t(b * 8 + l) * 16 + size_t(k))];
           o[0] = cs[k].x[l], o[1] = cs[k].y[l], o[2] = cs[k].z[l];
         }
     }
@@ -83,7 +87,7 @@ ShIrradiance shIrradianceVulkan(vk::Context& ctx, const emu::Texture& env) {
   const uint32_t w = env.width(), h = env.height();
   vk::Image img(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, w, h, 1, env.levels(), 16, VK_IMAGE_VIEW_TYPE_2D);
   vk::Sampler sampler(ctx, environmentSamplerInfo(true));  // texelFetch ignores the sampler state
-  vk::Buffer rows(ctx, size_t(h) * 9 * 16), out(ctx, 9 * 16);
+  vk::Buffer rows(ctx, size_t(h) * 16 * 16), out(ctx, 16 * 16);
   static constexpr VkDescriptorType kProject[2] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   static constexpr VkDescriptorType kReduce[2] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   vk::Kernel project(ctx, vk::Stage::Compute, kSpv_sh_project_comp, kProject, sizeof(ProjectPush));
@@ -94,10 +98,11 @@ ShIrradiance shIrradianceVulkan(vk::Context& ctx, const emu::Texture& env) {
   project.run(bp, &pp, h);
   const ReducePush rp{h};
   const vk::Binding br[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, rows.handle()}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, out.handle()}};
-  reduce.run(br, &rp, 9);
+  reduce.run(br, &rp, 16);
   ShIrradiance r;
   const float* o = out.as<float>();
   for (int k = 0; k < 9; ++k) std::memcpy(&r.c[3 * size_t(k)], o + 4 * k, 12);
+  for (int k = 9; k < 16; ++k) std::memcpy(&r.band3[3 * size_t(k - 9)], o + 4 * k, 12);
   return r;
 }
 

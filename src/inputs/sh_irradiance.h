@@ -14,6 +14,7 @@ namespace vk { class Context; }
 /// Y11, Y2-2, Y2-1, Y20, Y21, Y22), band scale A_l / pi already applied.
 struct ShIrradiance {
   std::array<float, 27> c{};
+  std::array<float, 21> band3{};  // raw radiance L_3m, band3[3 (k - 9) + channel], k = 9..15 (shade/sh16.h)
 };
 
 /// On the emulator: rows in 8-lane vectors (SIMD build), TBB over vectors, then the tree (scalar

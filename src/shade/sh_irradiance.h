@@ -17,6 +17,9 @@
 // A_2 = pi / 4. The shading pass needs E / pi (Lambert: outgoing radiance kd E / pi), so the
 // reduction ends by scaling band l by A_l / pi = 1, 2/3, 1/4 (shIrradianceScale).
 // Negative irradiance (ringing of the truncated series behind a strong sun) is clamped to 0.
+// Band 3 (shade/sh16.h, 7 more coefficients) is projected in the same row loop and kept as raw
+// radiance L_3m (A_3 = 0 for Lambert: E does not use it): the lighting vector of SH visibility's
+// diffuse product (issue 16, shade/visibility.h).
 //
 // Fixed summation order, so the emulator and every GPU produce the same bits:
 //   1. one invocation per row y (shProjectRow): the row's texels summed left to right;
@@ -78,8 +81,30 @@ ShRgb shAccumulate(ShRgb acc, Float3 d, Float3 L) {
   return r;
 }
 
+// Band 3's 7 RGB coefficients, k = 9..15 in shade/sh16.h order.
+struct ShBand3 {
+  Float3 c9;
+  Float3 c10;
+  Float3 c11;
+  Float3 c12;
+  Float3 c13;
+  Float3 c14;
+  Float3 c15;
+};
+
+ShBand3 shAccumulateBand3(ShBand3 acc, Float3 d, Float3 L) {
+  Sh16 Y = sh16Basis(d);
+  return ShBand3(acc.c9 + L * Y.c.y, acc.c10 + L * Y.c.z, acc.c11 + L * Y.c.w, acc.c12 + L * Y.d.x, acc.c13 + L * Y.d.y,
+                 acc.c14 + L * Y.d.z, acc.c15 + L * Y.d.w);
+}
+
+struct ShRow {
+  ShRgb low;     // bands 0-2
+  ShBand3 high;  // band 3
+};
+
 // Step 1: the projection of row y of the equirectangular map `env` (width x height, level 0).
-ShRgb shProjectRow(Sampler2D env, Int y, int width, int height) {
+ShRow shProjectRow(Sampler2D env, Int y, int width, int height) {
   PRECISE Float invW = exDiv(1.0f, Float(float(width)));
   PRECISE Float inv2H = exDiv(1.0f, Float(float(2 * height)));
   XmSinCos mid = exSinCos2Pi((Float(y) + 0.5f) * inv2H);  // theta = pi (y + 1/2) / H = 2 pi (.. / 2H)
@@ -87,19 +112,22 @@ ShRgb shProjectRow(Sampler2D env, Int y, int width, int height) {
   PRECISE Float dw = (2.0f * mid.s) * halfStep.s * (6.28318548f * invW);
   Float3 zero = Float3(0.0f, 0.0f, 0.0f);
   ShRgb acc = ShRgb(zero, zero, zero, zero, zero, zero, zero, zero, zero);
+  ShBand3 hi = ShBand3(zero, zero, zero, zero, zero, zero, zero);
   for (int x = 0; x < width; x++) {
     XmSinCos az = exSinCos2Pi((Float(float(x)) + 0.5f) * invW);
     PRECISE Float3 d = Float3(-(mid.s * az.s), mid.c, mid.s * az.c);
     Float4 t = texelFetch2D(env, Int(x), y, 0);
     PRECISE Float3 L = Float3(t.x, t.y, t.z) * dw;
     acc = shAccumulate(acc, d, L);
+    hi = shAccumulateBand3(hi, d, L);
   }
-  return acc;
+  return ShRow(acc, hi);
 }
 
-// Step 2's last operation: band scale A_l / pi of coefficient k (uniform or per invocation).
+// Step 2's last operation: band scale A_l / pi of coefficient k (uniform or per invocation); band 3
+// (k >= 9) stays raw radiance.
 Float3 shIrradianceScale(Uint k, Float3 sum) {
-  Float s = select(k == 0u, 1.0f, select(k < 4u, 0.666666687f, 0.25f));
+  Float s = select(k == 0u, 1.0f, select(k < 4u, 0.666666687f, select(k < 9u, 0.25f, 1.0f)));
   PRECISE Float3 r = sum * s;
   return r;
 }

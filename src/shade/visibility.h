@@ -15,9 +15,7 @@
 // only c = sum_k w_k V_k with w_k = M+ y(omega_k), the K weight vectors, summed in k order (k = 0
 // first), so every build adds the same floats in the same order.
 //
-// Real SH basis (Sloan, "Stupid Spherical Harmonics (SH) Tricks", 2008, appendix; the same bands 0-2
-// as shade/sh_irradiance.h): band 3 y(3x^2 - y^2), xyz, y(5z^2 - 1), z(5z^2 - 3), x(5z^2 - 1),
-// z(x^2 - y^2), x(x^2 - 3y^2) with their normalisations. Any orthonormal basis gives the same fit.
+// Real SH basis of order 4: shade/sh16.h. Any orthonormal basis gives the same fit.
 //
 // Shadow test of map k at the world point p (the G-buffer's position), unit normal n: the map's
 // light matrix (passes/shadow.h shadowViewProjection, orthographic, w = 1) gives clip (x, y, z);
@@ -37,47 +35,6 @@ struct VisSettings {
   float biasConst;  // b0, depth units
   float biasSlope;  // b1, depth units per unit of tan theta
 };
-
-// 16 SH coefficients (or basis values), i = 0..15 as (a.x, a.y, a.z, a.w, b.x, ..., d.w): band 0, 1 (3),
-// 2 (5), 3 (7), m ascending within a band.
-struct Sh16 {
-  Float4 a;
-  Float4 b;
-  Float4 c;
-  Float4 d;
-};
-
-Sh16 sh16Basis(Float3 v) {
-  PRECISE Float xx = v.x * v.x;
-  PRECISE Float yy = v.y * v.y;
-  PRECISE Float zz = v.z * v.z;
-  PRECISE Float b20 = 0.315391565f * (3.0f * zz - 1.0f);
-  PRECISE Float b22 = 0.546274215f * (xx - yy);
-  PRECISE Float b3m3 = 0.590043604f * (v.y * (3.0f * xx - yy));
-  PRECISE Float b3m2 = 2.89061141f * ((v.x * v.y) * v.z);
-  PRECISE Float b3m1 = 0.457045794f * (v.y * (5.0f * zz - 1.0f));
-  PRECISE Float b30 = 0.373176336f * (v.z * (5.0f * zz - 3.0f));
-  PRECISE Float b31 = 0.457045794f * (v.x * (5.0f * zz - 1.0f));
-  PRECISE Float b32 = 1.44530571f * (v.z * (xx - yy));
-  PRECISE Float b33 = 0.590043604f * (v.x * (xx - 3.0f * yy));
-  return Sh16(Float4(Float(0.282094792f), 0.488602512f * v.y, 0.488602512f * v.z, 0.488602512f * v.x),
-              Float4(1.09254843f * (v.x * v.y), 1.09254843f * (v.y * v.z), b20, 1.09254843f * (v.x * v.z)),
-              Float4(b22, b3m3, b3m2, b3m1), Float4(b30, b31, b32, b33));
-}
-
-// sum_i c_i y_i, in i order.
-Float sh16Dot(Sh16 c, Sh16 y) {
-  PRECISE Float r = dot(c.a, y.a);
-  r = r + dot(c.b, y.b);
-  r = r + dot(c.c, y.c);
-  r = r + dot(c.d, y.d);
-  return r;
-}
-
-// acc + w v, coefficient by coefficient.
-Sh16 sh16AddScaled(Sh16 acc, Sh16 w, Float v) {
-  return Sh16(acc.a + w.a * v, acc.b + w.b * v, acc.c + w.c * v, acc.d + w.d * v);
-}
 
 // The visibility sample of map k (uniform) at p, unit normal n: 1 or 0 (kVisFitV), times
 // max(0, n . omega_k) (kVisFitVCos). data row k: texels 0-3 the light matrix's columns, 4 omega_k.

@@ -147,12 +147,13 @@ int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out) {
   EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
   const ShIrradiance e = shIrradianceEmu(*env.texture, *s.dev), v = shIrradianceVulkan(*s.ctx, *env.texture);
   out << "environment " << s.scene.environment << " (" << env.width << "x" << env.height
-      << ") -> 9 x RGB coefficients of E/pi\n";
-  UlpTally t{"coefficients"};
+      << ") -> 9 x RGB coefficients of E/pi, 7 x RGB of band-3 radiance\n";
+  UlpTally t{"coefficients"}, t3{"band 3"};
   for (size_t i = 0; i < e.c.size(); ++i) t.add(e.c[i], v.c[i]);
+  for (size_t i = 0; i < e.band3.size(); ++i) t3.add(e.band3[i], v.band3[i]);
   out << "E/pi(+y) = " << shIrradianceAt(e, {0, 1, 0})[1] << ", E/pi(-y) = " << shIrradianceAt(e, {0, -1, 0})[1]
       << " (green)\n";
-  return finish("sh", printTallies({t}, out), *s.ctx, opts, out);
+  return finish("sh", printTallies({t, t3}, out), *s.ctx, opts, out);
 }
 
 int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
