@@ -116,8 +116,11 @@ void countFisPass(const Setup& s) {
     const cs::SurfaceMaterial m =
         cs::surfaceMaterial(maps, CV3(rec[0].x, rec[0].y, rec[0].z), CV3(rec[1].x, rec[1].y, rec[1].z),
                             cs::brdfParamsPacked(kind, rec[2], rec[3], rec[4], rec[5]), mp[0], mp[1], mp[2], g1, g2, g3);
+    const CV4 zero(CF(0.0f), CF(0.0f), CF(0.0f), CF(0.0f));
+    const cs::Sh16 noVis{zero, zero, zero, zero};  // the roofline counts the pass without visibility
     const CV4 out = cs::shadeFis(atlas, shade::scalar::kFisFiltered, maxLod, levelC, bias, scene.fisSamples, intensity, sh,
-                                 pixel, g0, g1, g2, splat(cam.eye), ray, m.diffuse, m.specular, m.brdf);
+                                 pixel, g0, g1, g2, splat(cam.eye), ray, m.diffuse, m.specular, m.brdf,
+                                 shade::scalar::kFisVisNone, noVis, cs::VisLighting{noVis, noVis, noVis});
     benchmark::DoNotOptimize(out);
   }
 }

@@ -100,10 +100,9 @@ TEST(Visibility, PseudoInverseOfFullRankAndDeficientSets) {
 }
 
 TEST(Visibility, UnoccludedFitApproachesTheClampedCosineProjection) {
-  // Nothing occludes (maps at depth 1): V max(0, n.w) on 256 uniform directions; the least-squares
-  // fit approaches the SH projection of max(0, y) for n = +y: c0 = pi Y00 = 0.8862, c2 (y) = 2 pi/3
-  // Y1 = 1.0233, c6 (3y^2 - 1 band, here 3z^2 - 1 with z the third axis: zero for n = +y)...
-  // checked against the double-precision quadrature of the same basis.
+  // Nothing occludes (maps at depth 1): the fit is the prior, the SH projection of max(0, y) for
+  // n = +y (c0 = pi Y00 = 0.8862, c1 (y) = 2 pi/3 Y1 = 1.0233, band 3 zero), checked against the
+  // double-precision quadrature of the same basis.
   const shadetwin::Scene scene = bunny();
   const auto v = uniformSetup(256, true, scene);
   const auto maps = uniformMaps(256, 16, 1.0f);
@@ -119,22 +118,36 @@ TEST(Visibility, UnoccludedFitApproachesTheClampedCosineProjection) {
   for (double& x : proj) x *= 4 * std::numbers::pi / double(dense.size());
   EXPECT_NEAR(proj[0], 0.8862, 1e-3);
   EXPECT_NEAR(proj[1], 1.0233, 1e-3);
-  for (int i = 0; i < 16; ++i) EXPECT_NEAR(c[size_t(i)], proj[size_t(i)], 0.03) << i;
+  for (int i = 0; i < 16; ++i) EXPECT_NEAR(c[size_t(i)], proj[size_t(i)], 2e-3) << i;  // band 3: 0 (A_3 = 0)
 }
 
-TEST(Visibility, FullyBlockedPixelFitsZeroAndOpenPixelFitsOne) {
+TEST(Visibility, OpenPixelFitsThePriorExactlyAndBlockedPixelFitsZero) {
+  // Regularised towards the unoccluded transfer t: a pixel no map occludes gets exactly t (every
+  // residual is 0), bit for bit; a pixel every map occludes, with 64 spread directions (full rank),
+  // gets a fit that is ~0 at every sampled direction (the least-squares residual).
   const shadetwin::Scene scene = bunny();
   for (bool cosine : {true, false}) {
-    const auto v = uniformSetup(32, cosine, scene);
-    // Every map at depth 0: every test fails (z - bias > 0 inside the bounding sphere).
-    const auto c = flat(fitPoint(v, uniformMaps(32, 16, 0.0f), {0, 0.2f, 0}, {0, 1, 0}));
-    for (float x : c) EXPECT_EQ(x, 0.0f) << cosine;  // exactly: every sample is 0
-    // V alone, nothing blocked: the fit is the constant 1 = sqrt(4 pi) Y00 (the constant is in the span).
-    if (!cosine) {
-      const auto o = flat(fitPoint(v, uniformMaps(32, 16, 1.0f), {0, 0.2f, 0}, {0, 1, 0}));
-      EXPECT_NEAR(o[0], 2 * std::sqrt(std::numbers::pi), 1e-4);
-      for (int i = 1; i < 16; ++i) EXPECT_NEAR(o[size_t(i)], 0.0f, 1e-4) << i;
+    const auto v = uniformSetup(64, cosine, scene);
+    const Vec3 n{0, 1, 0};
+    const auto open = flat(fitPoint(v, uniformMaps(64, 16, 1.0f), {0, 0.2f, 0}, n));
+    const double pi = std::numbers::pi;
+    const auto y = shadetwin::sh16BasisDouble(n);
+    for (int i = 0; i < 16; ++i) {
+      const double band = i == 0 ? pi : i < 4 ? 2 * pi / 3 : i < 9 ? pi / 4 : 0.0;
+      const double t = cosine ? band * y[size_t(i)] : (i == 0 ? 2 * std::sqrt(pi) : 0.0);
+      EXPECT_NEAR(open[size_t(i)], t, 1e-6) << cosine << " " << i;
     }
+    const auto blocked = flat(fitPoint(v, uniformMaps(64, 16, 0.0f), {0, 0.2f, 0}, n));
+    double worst = 0;
+    for (const Vec3& d : v.directions) {
+      const auto yd = shadetwin::sh16BasisDouble(d);
+      double f = 0;
+      for (int i = 0; i < 16; ++i) f += double(blocked[size_t(i)]) * yd[size_t(i)];
+      worst = std::max(worst, std::fabs(f));
+    }
+    // V alone: the residual -1 is in the span (Y00), fitted exactly; V max(0, n.w): the residual
+    // -max(0, n.w) is not band-limited, so the least-squares fit leaves a small residual (0.003 here).
+    EXPECT_LT(worst, cosine ? 0.01 : 1e-4) << cosine;
   }
 }
 

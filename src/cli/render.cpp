@@ -18,6 +18,7 @@
 #include "passes/mips.h"
 #include "passes/shade.h"
 #include "passes/passes_vk.h"
+#include "passes/visibility.h"
 #include "inputs/shade_inputs.h"
 #include "vk/context.h"
 #include "scene/scene.h"
@@ -27,6 +28,14 @@ namespace shadetwin {
 using Clock = std::chrono::steady_clock;
 
 namespace {
+void visibilityLines(std::ostream& passes, const char* build, const VisibilitySetup& v, const VisibilityTimes& t) {
+  passes << "  shadow maps (" << build << ")       " << std::setw(8) << t.shadowMs << " ms  (" << v.settings.maps << " x "
+         << v.settings.size << "^2, directions from the environment's luminance" << (v.uniformFallback ? ": none, uniform" : "")
+         << ")\n";
+  passes << "  visibility fit (" << build << ")    " << std::setw(8) << t.fitMs << " ms  (order-4 SH, "
+         << (v.settings.fitCosine ? "V max(0, n.w)" : "V") << ", rank " << v.rank << "/16)\n";
+}
+
 // Output path of frame f: OUT itself for a single frame, else OUT's stem + _NNNN.
 std::string frameOut(const std::string& out, uint32_t frames, uint32_t f) {
   if (frames == 1) return out;
@@ -89,9 +98,13 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       if (f == 0) g = gbufferEmu(scene, dev, &gs);
       const double tGbuf = msSince(t0);
       const ShadeInputs& in = cache.emu(scene, *env.texture, dev);
+      VisibilityTimes vt;
+      std::unique_ptr<VisibilityImage> vis;
+      if (in.visibility) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *in.visibility, dev, &vt));
       t0 = Clock::now();
-      image = shadeEmu(scene, g, in, dev);
+      image = shadeEmu(scene, g, in, dev, vis.get());
       const double tShade = msSince(t0);
+      if (vis) visibilityLines(passes, "emu", *in.visibility, vt);
       if (rotated.texture)
         passes << "  environment turned      " << std::setw(8) << tRotate << " ms  (" << degrees << " degrees = "
                << environmentShift(env0.width, degrees) << " columns, + MIP chain)\n";
@@ -128,15 +141,20 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       if (cache.lastRebuilt() || rotated.texture) spass = std::make_unique<ShadePassVk>(*ctx, scene, in);
       const double tSetup = msSince(t0);
       if (f == 0) g = gpass->run();
-      image = spass->run(g);
+      VisibilityTimes vt;
+      std::unique_ptr<VisibilityImage> vis;
+      if (in.visibility) vis = std::make_unique<VisibilityImage>(visibilityVulkan(*ctx, scene, g, *in.visibility, &vt));
+      image = spass->run(g, vis.get());
+      if (vis) visibilityLines(passes, "vulkan", *in.visibility, vt);
       passes << "  Vulkan set-up (" << ctx->deviceName() << ")  " << std::setw(8) << tSetup << " ms"
              << (cache.lastRebuilt() ? "" : "  (technique inputs reused)") << "\n";
       if (f == 0) passes << "  G-buffer (vulkan)        " << std::setw(8) << gpass->lastMs << " ms  (submit to read-back)\n";
       passes << "  shading (vulkan, " << scene.technique << ") " << std::setw(8) << spass->lastMs << " ms  (submit to read-back)\n";
     }
     // Passes the technique does not use are not run.
-    passes << "  shadow maps              " << std::setw(8) << "-" << "     (not run: technique " << scene.technique
-           << " uses no visibility)\n";
+    if (!(scene.visMaps && usesFisPass(scene.technique)))
+      passes << "  shadow maps              " << std::setw(8) << "-" << "     (not run: technique " << scene.technique
+             << (usesFisPass(scene.technique) ? " without a visibility block" : " uses no visibility") << ")\n";
     if (progressive) {
       if (f == 0 || cache.lastRebuilt() || rotated.texture) accum.assign(image.size(), 0.0), accumFrames = 0;
       ++accumFrames;

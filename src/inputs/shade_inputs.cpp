@@ -17,6 +17,10 @@ ShadeInputs shadeInputsWith(const Scene& scene, const emu::Texture& env, Atlas a
   if (usesFisPass(scene.technique)) {
     in.atlasMs = timeMs([&] { in.atlas = std::make_shared<emu::Texture>(atlas()); });
     in.shMs = timeMs([&] { in.sh = sh(); });
+    if (scene.visMaps) {
+      in.visibility = std::make_shared<VisibilitySetup>(visibilitySetup(scene, env, visibilitySettings(scene)));
+      in.visLighting = visibilityLighting(in.sh);
+    }
   }
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
   if (usesMisPass(scene.technique))
@@ -46,6 +50,9 @@ uint64_t shadeInputsKey(const Scene& scene, const emu::Texture& env) {
   };
   const uint32_t dims[6] = {env.width(), env.height(), uint32_t(env.format()), scene.fisFaceSize, scene.fisSamples, scene.envBlocks};
   mix(dims, sizeof dims);
+  const float vis[5] = {float(scene.visMaps), float(scene.visSize), scene.visFitCosine ? 1.0f : 0.0f, scene.visBias,
+                        scene.visSlopeBias};
+  mix(vis, sizeof vis);
   mix(env.levels()[0].data(), env.levels()[0].size());
   mix(scene.technique.data(), scene.technique.size());
   for (const Material& m : scene.materials)

@@ -13,6 +13,7 @@
 #include "inputs/env_lights.h"
 #include "inputs/env_sampling.h"
 #include "inputs/sh_irradiance.h"
+#include "inputs/visibility.h"
 #include "scene/scene.h"
 
 namespace shadetwin {
@@ -25,6 +26,8 @@ struct ShadeInputs {
   EnvLights lights;                           // env: directional lights (host-sampled, the same for both builds)
   std::shared_ptr<const EnvSamplingTables> envTables;  // *-mis: the environment sampler's tables (host-built)
   std::shared_ptr<const emu::Texture> maps;   // fis, env: material maps (inputs/material.h), a 1x1 white layer if none
+  std::shared_ptr<const VisibilitySetup> visibility;  // fis with a "visibility" block: directions, matrices, fit weights
+  std::array<float, 48> visLighting{};        // ... and the raw order-4 lighting SH (inputs/visibility.h)
   double atlasMs = 0, shMs = 0;               // build times (0 when not built)
   /// The texture the shading kernel samples: the atlas for fis, else the environment.
   const emu::Texture& texture() const { return atlas ? *atlas : *environment; }

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include "inputs/env_lights.h"
+#include "inputs/sh_irradiance.h"
 #include "passes/shadow.h"
 
 namespace shadetwin {
@@ -41,6 +42,26 @@ std::array<double, 256> sh16PseudoInverse(const std::vector<Vec3>& dirs, double 
   for (int i = 0; i < 16; ++i)
     for (int j = 0; j < 16; ++j) out[size_t(16 * i + j)] = P(i, j);
   return out;
+}
+
+VisibilitySettings visibilitySettings(const Scene& scene) {
+  VisibilitySettings s;
+  s.maps = scene.visMaps;
+  s.size = scene.visSize;
+  s.fitCosine = scene.visFitCosine;
+  s.biasTexels = scene.visBias;
+  s.biasSlopeTexels = scene.visSlopeBias;
+  return s;
+}
+
+std::array<float, 48> visibilityLighting(const ShIrradiance& sh) {
+  std::array<float, 48> L{};
+  for (int ch = 0; ch < 3; ++ch)
+    for (int k = 0; k < 16; ++k) {
+      const float unscale = k == 0 ? 1.0f : k < 4 ? 1.5f : 4.0f;
+      L[size_t(16 * ch + k)] = k < 9 ? sh.c[size_t(3 * k + ch)] * unscale : sh.band3[size_t(3 * (k - 9) + ch)];
+    }
+  return L;
 }
 
 VisibilitySetup visibilitySetup(const Scene& scene, const emu::Texture& env, const VisibilitySettings& s) {

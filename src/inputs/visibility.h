@@ -45,5 +45,12 @@ std::array<double, 256> sh16PseudoInverse(const std::vector<Vec3>& dirs, double 
 
 /// Directions, matrices and the data table for `scene` under the RGBA32F environment `env` (level 0).
 VisibilitySetup visibilitySetup(const Scene& scene, const emu::Texture& env, const VisibilitySettings& s);
+/// The scene's visibility settings ("visibility" block).
+VisibilitySettings visibilitySettings(const Scene& scene);
+
+struct ShIrradiance;
+/// The raw order-4 lighting SH per channel (r[16], g[16], b[16]) of shade/visibility.h VisLighting:
+/// bands 0-2 from the E/pi coefficients divided by their band scale (1, 2/3, 1/4), band 3 as stored.
+std::array<float, 48> visibilityLighting(const ShIrradiance& sh);
 
 }  // namespace shadetwin

@@ -68,7 +68,8 @@ class ShadePassVk {
   /// in: the technique's inputs (either build's), sampled with the emulator's sampler state.
   ShadePassVk(vk::Context& ctx, const Scene& scene, const ShadeInputs& in);
   ~ShadePassVk();
-  std::vector<float> run(const GBuffer& g);
+  /// vis: the frame's SH visibility fit of `g` (fis with a "visibility" block), or nullptr.
+  std::vector<float> run(const GBuffer& g, const struct VisibilityImage* vis = nullptr);
   double lastMs = 0;
 
  private:

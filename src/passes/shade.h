@@ -23,10 +23,13 @@ CameraRays cameraRays(const Scene& scene);
 /// Emulated deferred shading pass: compute stage, 8 lanes per device vector (SIMD build of the
 /// technique's shared source), TBB over blocks. Returns RGBA floats per pixel. `in`: what the
 /// technique reads from the environment (inputs/shade_inputs.h), built by either build.
-std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev);
+/// vis: the frame's SH visibility fit of this G-buffer (passes/visibility.h) for fis with a
+/// "visibility" block; nullptr shades without visibility.
+std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                            const struct VisibilityImage* vis = nullptr);
 /// Same, into `out` (resized to 4 floats per pixel, storage reused).
 void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
-              std::vector<float>& out);
+              std::vector<float>& out, const struct VisibilityImage* vis = nullptr);
 
 /// Emulated sampler of an environment texture: trilinear, clamp in v, repeat (equirectangular map) or
 /// clamp (paraboloid atlas) in u; the emulator's side of environmentSamplerInfo (passes/passes_vk.h).

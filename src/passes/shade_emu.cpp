@@ -1,4 +1,5 @@
 #include "passes/shade.h"
+#include "passes/visibility.h"
 
 #include <cmath>
 
@@ -32,9 +33,10 @@ CameraRays cameraRays(const Scene& scene) {
   return r;
 }
 
-std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev) {
+std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                            const VisibilityImage* vis) {
   std::vector<float> out;
-  shadeEmu(scene, g, in, dev, out);
+  shadeEmu(scene, g, in, dev, out, vis);
   return out;
 }
 
@@ -163,8 +165,22 @@ void shadeEnvEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
   });
 }
 
+// The lanes' SH visibility coefficients (zero without visibility: the kernel does not read them).
+shade::x8::Sh16 laneVisibility(const PixelBlock& p, const VisibilityImage* vis) {
+  float c[16][8] = {};
+  if (vis)
+    for (int l = 0; l < 8; ++l)
+      for (int k = 0; k < 16; ++k) c[k][l] = vis->coeffs[size_t(p.pixel[l]) * 16 + size_t(k)];
+  auto v4 = [&](int k) {
+    V4x r;
+    for (int l = 0; l < 8; ++l) r.x.set(l, c[k][l]), r.y.set(l, c[k + 1][l]), r.z.set(l, c[k + 2][l]), r.w.set(l, c[k + 3][l]);
+    return r;
+  };
+  return {v4(0), v4(4), v4(8), v4(12)};
+}
+
 void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
-                 std::vector<float>& out) {
+                 std::vector<float>& out, const VisibilityImage* vis) {
   const emu::Texture& atlas = *in.atlas;
   const shade::Sampler2D s = environmentSampler(atlas, dev, false);  // the atlas clamps in u too
   const F8 maxLod(float(atlas.levelCount() - 1)), levelC(fisLevelConstant(scene)), bias(scene.fisLevelBias),
@@ -175,10 +191,21 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
   const uint32_t mode = fisMode(scene);
   const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);
   const std::vector<MaterialGpu> mats = materialRecords(scene, true);
+  const bool useVis = vis && in.visibility;
+  if (useVis && (vis->width != g.width || vis->height != g.height))
+    throw std::invalid_argument("shading pass: the visibility fit is not of this G-buffer");
+  const uint32_t visMode = !useVis ? shade::x8::kFisVisNone
+                                   : in.visibility->settings.fitCosine ? shade::x8::kFisVisCos : shade::x8::kFisVisV;
+  auto sh16 = [&](const float* c) {
+    return shade::x8::Sh16{V4x(F8(c[0]), F8(c[1]), F8(c[2]), F8(c[3])), V4x(F8(c[4]), F8(c[5]), F8(c[6]), F8(c[7])),
+                           V4x(F8(c[8]), F8(c[9]), F8(c[10]), F8(c[11])), V4x(F8(c[12]), F8(c[13]), F8(c[14]), F8(c[15]))};
+  };
+  const shade::x8::VisLighting vl{sh16(&in.visLighting[0]), sh16(&in.visLighting[16]), sh16(&in.visLighting[32])};
   shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
     const auto m = surface(p, mats, maps);
     return shade::x8::shadeFis(s, mode, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.pixel, p.g0, p.g1, p.g2,
-                               p.eye, p.ray, m.diffuse, m.specular, m.brdf);
+                               p.eye, p.ray, m.diffuse, m.specular, m.brdf, visMode,
+                               laneVisibility(p, useVis ? vis : nullptr), vl);
   });
 }
 // Techniques *-mis: shade_env_mis.comp's shadeEnvMis over the environment and its sampler's tables.
@@ -202,8 +229,8 @@ void shadeMisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
 }  // namespace
 
 void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
-              std::vector<float>& out) {
-  if (usesFisPass(scene.technique)) return shadeFisEmu(scene, g, in, dev, out);
+              std::vector<float>& out, const VisibilityImage* vis) {
+  if (usesFisPass(scene.technique)) return shadeFisEmu(scene, g, in, dev, out, vis);
   if (usesMisPass(scene.technique)) return shadeMisEmu(scene, g, in, dev, out);
   if (scene.technique == "env") return shadeEnvEmu(scene, g, in, dev, out);
   const emu::Texture& env = *in.environment;

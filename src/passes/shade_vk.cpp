@@ -8,6 +8,7 @@
 #include "emu/format.h"
 #include "inputs/material.h"
 #include "passes/passes_vk.h"
+#include "passes/visibility.h"
 
 namespace shadetwin {
 namespace {
@@ -23,7 +24,7 @@ struct ShadePush {
   float invW, invH, maxLod, intensity;
   uint32_t width, count, materialCount, sampleCount;
   float levelConstant, levelBias;
-  uint32_t mode, pad;
+  uint32_t mode, visMode;
 };
 static_assert(offsetof(ShadePush, levelConstant) == 96, "the first 96 bytes are shade_mirror.comp's push block");
 static_assert(sizeof(ShadePush) == 112, "ShadePush must match the push block of shade_fis.comp");
@@ -89,6 +90,8 @@ struct ShadePassVk::Impl {
   KernelInfo info;
   bool fis;
   uint32_t lightCount;
+  std::shared_ptr<const VisibilitySetup> visibility;  // fis with visibility
+  std::array<float, 48> visLighting;
   size_t materialStride() const { return info.brdf ? sizeof(MaterialGpu) : offsetof(MaterialGpu, brdf); }
   Impl(vk::Context& c, const Scene& s, const ShadeInputs& in)
       : Impl(c, s, in, in.texture(), in.maps ? *in.maps : whiteTexture(), kernelInfo(s.technique)) {}
@@ -108,7 +111,8 @@ struct ShadePassVk::Impl {
         table(in.envTables ? dataTextureImage(c, *in.envTables->table) : nullptr),
         texels(in.envTables ? dataTextureImage(c, *in.envTables->texels) : nullptr), tableSampler(c, dataTextureSamplerInfo()),
         envTables(in.envTables.get()), info(ki),
-        fis(usesFisPass(s.technique)), lightCount(in.lights.count) {
+        fis(usesFisPass(s.technique)), lightCount(in.lights.count), visibility(in.visibility),
+        visLighting(in.visLighting) {
     if (fis)
       for (int k = 0; k < 9; ++k) {
         float* d = extra.as<float>() + 4 * k;
@@ -128,7 +132,7 @@ ShadePassVk::ShadePassVk(vk::Context& ctx, const Scene& scene, const ShadeInputs
     : impl_(std::make_unique<Impl>(ctx, scene, in)) {}
 ShadePassVk::~ShadePassVk() = default;
 
-std::vector<float> ShadePassVk::run(const GBuffer& g) {
+std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis) {
   Impl& m = *impl_;
   const size_t n = size_t(g.width) * g.height;
   const size_t stride = m.info.brdf ? 64 : 32;  // G0, G1 (+ G2, G3: tangent, uv derivatives, for fis and env)
@@ -139,7 +143,7 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
   float* dst = m.gbuf->as<float>();
   for (size_t p = 0; p < n; ++p) std::memcpy(dst + stride / 4 * p, g.texels.data() + p * kGbufFloats, stride);
   const CameraRays cam = cameraRays(m.scene);
-  const vk::Binding b[8] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
+  vk::Binding b[8] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.gbuf->handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.materials.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.out->handle()},
@@ -149,6 +153,18 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
                              m.tableSampler.handle()},
                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.texels ? m.texels->view() : VK_NULL_HANDLE,
                              m.tableSampler.handle()}};
+  // fis with visibility: binding 4 is the E/pi coefficients, the lighting SH and the pixels' fit.
+  std::unique_ptr<vk::Buffer> visExtra;
+  const bool useVis = m.fis && vis && m.visibility;
+  if (useVis) {
+    if (vis->width != g.width || vis->height != g.height) throw vk::Error("shading pass: the visibility fit is not of this G-buffer");
+    visExtra = std::make_unique<vk::Buffer>(m.ctx, (21 + 4 * n) * 16);
+    float* d = visExtra->as<float>();
+    std::memcpy(d, m.extra.data(), 9 * 16);
+    std::memcpy(d + 36, m.visLighting.data(), 48 * 4);
+    std::memcpy(d + 84, vis->coeffs.data(), n * 64);
+    b[4] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, visExtra->handle()};
+  }
   if (m.info.bindings == 8) {  // the MIS kernel: its settings, the frame's included, in binding 4
     if (!m.envTables) throw vk::Error("shading pass: technique " + m.scene.technique + " needs its environment sampler's tables");
     const MisSettingsGpu st{m.envTables->uniforms, m.scene.misHeuristic, m.scene.misSamples, m.scene.misFrame, m.scene.misSeed};
@@ -171,6 +187,8 @@ std::vector<float> ShadePassVk::run(const GBuffer& g) {
     push.levelConstant = fisLevelConstant(m.scene);
     push.levelBias = m.scene.fisLevelBias;
     push.mode = fisMode(m.scene);
+    push.visMode = !useVis ? shade::scalar::kFisVisNone
+                           : m.visibility->settings.fitCosine ? shade::scalar::kFisVisCos : shade::scalar::kFisVisV;
   } else if (m.scene.technique == "env") {
     push.sampleCount = m.lightCount;
   }

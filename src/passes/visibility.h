@@ -29,4 +29,13 @@ VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, con
                                  const emu::DeviceProfile& dev);
 VisibilityImage visibilityFitVulkan(vk::Context& ctx, const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v);
 
+struct VisibilityTimes {
+  double shadowMs = 0, fitMs = 0;
+};
+/// A frame's visibility on one build: the K shadow maps of v's directions, then the fit of `g`.
+VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const VisibilitySetup& v, const emu::DeviceProfile& dev,
+                              VisibilityTimes* times = nullptr);
+VisibilityImage visibilityVulkan(vk::Context& ctx, const Scene& scene, const GBuffer& g, const VisibilitySetup& v,
+                                 VisibilityTimes* times = nullptr);
+
 }  // namespace shadetwin

@@ -9,6 +9,7 @@
 #include "emu/fpenv.h"
 #include "lanes/instantiate.h"
 #include "passes/shade.h"
+#include "util/timer.h"
 
 namespace shadetwin {
 
@@ -50,6 +51,18 @@ VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, con
     }
   });
   return out;
+}
+
+VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const VisibilitySetup& v, const emu::DeviceProfile& dev,
+                              VisibilityTimes* times) {
+  VisibilityTimes t;
+  ShadowMaps sm;
+  t.shadowMs = timeMs([&] { shadowEmu(scene, v.directions, v.settings.size, dev, sm); });
+  const emu::Texture maps = shadowMapArray(sm);
+  VisibilityImage img;
+  t.fitMs = timeMs([&] { img = visibilityFitEmu(g, maps, v, dev); });
+  if (times) *times = t;
+  return img;
 }
 
 }  // namespace shadetwin

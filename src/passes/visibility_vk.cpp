@@ -2,6 +2,7 @@
 
 #include "passes/passes_vk.h"
 #include "passes/visibility.h"
+#include "util/timer.h"
 
 namespace shadetwin {
 namespace {
@@ -35,6 +36,18 @@ VisibilityImage visibilityFitVulkan(vk::Context& ctx, const GBuffer& g, const em
   r.coeffs.resize(n * 16);
   std::memcpy(r.coeffs.data(), out.as<float>(), n * 64);
   return r;
+}
+
+VisibilityImage visibilityVulkan(vk::Context& ctx, const Scene& scene, const GBuffer& g, const VisibilitySetup& v,
+                                 VisibilityTimes* times) {
+  VisibilityTimes t;
+  ShadowPassVk pass(ctx, scene, v.settings.size);
+  const emu::Texture maps = shadowMapArray(pass.run(v.directions));  // maps read back, uploaded as one array
+  t.shadowMs = pass.lastMs;
+  VisibilityImage img;
+  t.fitMs = timeMs([&] { img = visibilityFitVulkan(ctx, g, maps, v); });
+  if (times) *times = t;
+  return img;
 }
 
 }  // namespace shadetwin

@@ -185,7 +185,7 @@ Scene loadScene(const std::string& path) {
     throw SceneError(path + ": not valid JSON: " + e.what());
   }
   Reader R{path};
-  R.keys(j, "", {"image", "camera", "environment", "technique", "fis", "mis", "materials", "objects", "description"});
+  R.keys(j, "", {"image", "camera", "environment", "technique", "fis", "mis", "visibility", "materials", "objects", "description"});
   const fs::path dir = fs::path(path).parent_path();
   const fs::path root = fs::weakly_canonical(dir / "..");
   Scene s;
@@ -231,6 +231,20 @@ Scene loadScene(const std::string& path) {
     s.fisK = R.number(f, "fis.k", 4, 1e-3f, 1e6f);
     s.fisFaceSize = uint32_t(R.number(f, "fis.face_size", 256, 4, 8192));
     s.fisLevelBias = R.number(f, "fis.level_bias", 0, 0, 16);
+  }
+  if (j.contains("visibility")) {
+    const json& f = j["visibility"];
+    if (!f.is_object()) R.fail("visibility", "expected an object with maps, size, fit, bias, slope_bias");
+    R.keys(f, "visibility", {"maps", "size", "fit", "bias", "slope_bias"});
+    s.visMaps = uint32_t(R.number(f, "visibility.maps", 16, 1, 1024));
+    s.visSize = uint32_t(R.number(f, "visibility.size", 1024, 16, 8192));
+    s.visBias = R.number(f, "visibility.bias", 1.0f, 0, 1000);
+    s.visSlopeBias = R.number(f, "visibility.slope_bias", 1.5f, 0, 1000);
+    const std::string fit = R.string(f, "visibility.fit", "vcos");
+    if (fit != "vcos" && fit != "v") R.fail("visibility.fit", "unknown fit '" + fit + "' (expected vcos or v)");
+    s.visFitCosine = fit == "vcos";
+    if (!usesFisPass(s.technique))
+      R.fail("visibility", "technique " + s.technique + " does not read visibility yet (fis, unfiltered and stochastic do)");
   }
   if (j.contains("mis")) {
     const json& f = j["mis"];

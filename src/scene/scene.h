@@ -99,6 +99,13 @@ struct Scene {
   uint32_t misHeuristic = 1;  // power
   uint32_t envBlocks = 6144;
   uint32_t misSeed = 0;
+  // SH visibility from shadow maps ("visibility" block, issue 16; fis and its baselines): K maps of
+  // S x S (0: off, no shadow pass runs), the fit (V max(0, n.w) or V alone) and the depth bias in map
+  // texels (inputs/visibility.h VisibilitySettings).
+  uint32_t visMaps = 0;
+  uint32_t visSize = 1024;
+  bool visFitCosine = true;
+  float visBias = 1.0f, visSlopeBias = 1.5f;
   uint32_t misFrame = 0;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;

@@ -12,6 +12,8 @@
 // weight_i = fs cos / p (shade/brdf.h), times ks.
 // Diffuse term: kd * E(n) / pi from the order-3 SH irradiance of the environment
 // (shade/sh_irradiance.h; the coefficients already carry A_l / pi).
+// Visibility (issue 16, visMode != kFisVisNone): each sample's weight times the pixel's SH visibility
+// at its direction, and the diffuse term from the lighting-visibility product (shade/visibility.h).
 //
 // Background pixels (G0.w = 0) show the atlas along the camera ray at level 0.
 //
@@ -42,7 +44,7 @@ FisFrame fisFrame(Float3 nIn, Float3 tIn, Float3 v) {
 
 Float4 shadeFis(Sampler2D atlas, uint mode, Float maxLod, Float log2KwhOverN, Float levelBias, uint sampleCount,
                 Float intensity, ShRgb sh, Uint pixel, Float4 g0, Float4 g1, Float4 g2, Float3 eye, Float3 ray, Float3 diffuse, Float3 specular,
-                BrdfParams brdf) {
+                BrdfParams brdf, uint visMode, Sh16 vis, VisLighting visLight) {
   Mask geometry = g0.w != 0.0f;
   Float3 p = Float3(g0.x, g0.y, g0.z);
   Float3 v = exNormalize(eye - p);
@@ -61,11 +63,14 @@ Float4 shadeFis(Sampler2D atlas, uint mode, Float maxLod, Float log2KwhOverN, Fl
       l = min(max(l, 0.0f) + levelBias, maxLod);  // pdf = 0 (a lost sample, weight 0) gives +inf: the coarsest level
       if (mode != kFisFiltered) l = Float(0.0f);
       Float4 L = textureLod(atlas, paraboloidUv(wi), l);
-      sum = sum + Float3(L.x, L.y, L.z) * s.weight;
+      PRECISE Float3 term = Float3(L.x, L.y, L.z) * s.weight;
+      if (visMode != kFisVisNone) term = term * visAt(visMode, vis, F.basis.n, wi);
+      sum = sum + term;
     }
   }
   PRECISE Float invN = exDiv(1.0f, Float(sampleCount));
   Float3 irr = shIrradiance(sh, F.basis.n);
+  if (visMode != kFisVisNone) irr = visIrradiance(visMode, visLight, vis, irr, F.basis.n);
   PRECISE Float3 c = sum * invN * specular + irr * diffuse;
   Float4 bg = textureLod(atlas, paraboloidUv(ray), 0.0f);
   c = select(geometry, c, Float3(bg.x, bg.y, bg.z));

@@ -10,10 +10,19 @@
 // becomes a dot product of SH vectors), the coefficients minimising sum_k (sum_i c_i y_i(omega_k) -
 // V_k)^2 solve the normal equations M c = Y^T V, M = Y^T Y (16 x 16). The directions are the same for
 // every pixel, so the host forms M and its regularised pseudo-inverse M+ once per frame
-// (inputs/visibility.h: eigenvalue filter lambda / (lambda^2 + mu^2), mu = 1e-4 lambda_max, which is
-// the Moore-Penrose inverse as mu -> 0 and finite for K < 16 or coincident directions), and per pixel
-// only c = sum_k w_k V_k with w_k = M+ y(omega_k), the K weight vectors, summed in k order (k = 0
-// first), so every build adds the same floats in the same order.
+// (inputs/visibility.h: eigenvalue filter lambda / (lambda^2 + mu^2), the Moore-Penrose inverse as
+// mu -> 0, finite for K < 16 or coincident directions).
+// Regularisation towards the unoccluded transfer t (a prior, documented): luminance-sampled directions
+// cluster around the bright parts of the sky (16 forest directions give rank 13 of 16), so modes the
+// samples do not constrain would take any value and the diffuse product (below) would integrate them
+// against the whole sphere's lighting. Solving min |Y c - V|^2 + mu^2 |c - t|^2 instead gives
+//   c = t + M+ Y^T (V - T) = t + sum_k w_k (V_k - T_k),   w_k = M+ y(omega_k),
+// with T_k the unoccluded sample (max(0, n.omega_k), or 1): the residual is -T_k where map k
+// occludes and 0 elsewhere, so an unoccluded pixel gets exactly t and occlusion moves only what the
+// samples see. t is the SH of max(0, n.w) (V max(0, n.w) fit: band l of y(n) times pi, 2pi/3, pi/4,
+// 0; its value at w is tau(c) = 1/4 + c/2 + 5/32 (3c^2 - 1), c = n.w, bands 0-2 of the clamped
+// cosine) or of 1 (V fit: sqrt(4 pi) in Y00). The K terms are summed in k order (k = 0 first), so
+// every build adds the same floats.
 //
 // Real SH basis of order 4: shade/sh16.h. Any orthonormal basis gives the same fit.
 //
@@ -36,9 +45,10 @@ struct VisSettings {
   float biasSlope;  // b1, depth units per unit of tan theta
 };
 
-// The visibility sample of map k (uniform) at p, unit normal n: 1 or 0 (kVisFitV), times
-// max(0, n . omega_k) (kVisFitVCos). data row k: texels 0-3 the light matrix's columns, 4 omega_k.
-Float visSample(Sampler2DArray maps, Sampler2D data, VisSettings s, int k, Float3 p, Float3 n) {
+// The visibility sample of map k (uniform) at p, unit normal n, minus the prior's value there:
+// 1 or 0 (kVisFitV), times max(0, n . omega_k) (kVisFitVCos). data row k: texels 0-3 the light
+// matrix's columns, 4 omega_k.
+Float visResidual(Sampler2DArray maps, Sampler2D data, VisSettings s, int k, Float3 p, Float3 n) {
   Int row = Int(k);
   Float4 m0 = texelFetch2D(data, Int(0), row, 0);
   Float4 m1 = texelFetch2D(data, Int(1), row, 0);
@@ -55,22 +65,70 @@ Float visSample(Sampler2DArray maps, Sampler2D data, VisSettings s, int k, Float
   PRECISE Float tanTheta = exDiv(exSqrt(max(1.0f - c * c, 0.0f)), max(abs(c), 0.1f));
   PRECISE Float bias = s.biasConst + s.biasSlope * min(tanTheta, 10.0f);
   Mask lit = clip.z - bias <= depth;
-  Float weight = select(s.fit == kVisFitV, Float(1.0f), max(c, 0.0f));
-  return select(lit, weight, Float(0.0f));
+  Float unoccluded = select(s.fit == kVisFitV, Float(1.0f), max(c, 0.0f));
+  return select(lit, Float(0.0f), -unoccluded);
 }
 
-// The per-pixel fit c = sum_k w_k V_k (k = 0 first); data row k, texels 5-8: w_k = M+ y(omega_k).
-// nIn: the G-buffer's interpolated normal (normalised here).
-Sh16 visFit(Sampler2DArray maps, Sampler2D data, VisSettings s, Float3 p, Float3 nIn) {
-  Float3 n = exNormalize(nIn);
+// The prior t: the SH of max(0, n.w) (kVisFitVCos) or of the constant 1 (kVisFitV).
+Sh16 visPrior(VisSettings s, Float3 n) {
+  Sh16 y = sh16Basis(n);
+  PRECISE Float4 a = y.a * Float4(3.14159274f, 2.09439516f, 2.09439516f, 2.09439516f);
+  PRECISE Float4 b = y.b * 0.785398185f;
+  PRECISE Float4 c = y.c * Float4(0.785398185f, 0.0f, 0.0f, 0.0f);
   Float4 zero = Float4(0.0f, 0.0f, 0.0f, 0.0f);
-  Sh16 acc = Sh16(zero, zero, zero, zero);
+  Float4 one = Float4(3.54490781f, 0.0f, 0.0f, 0.0f);  // sqrt(4 pi) Y00 = 1
+  Mask v = s.fit == kVisFitV;
+  return Sh16(select(v, one, a), select(v, zero, b), select(v, zero, c), zero);
+}
+
+// The per-pixel fit c = t + sum_k w_k (V_k - t(omega_k)) (k = 0 first); data row k, texels 5-8:
+// w_k = M+ y(omega_k). nIn: the G-buffer's interpolated normal (normalised here).
+Sh16 visFit(Sampler2DArray maps, Sampler2D data, VisSettings s, Float3 p, Float3 nIn) {
+  // Background pixels have no normal: +y instead of normalize(0) = NaN, so no NaN reaches min/max
+  // (whose NaN operand the C++ prelude and lavapipe resolve differently).
+  Float3 n = exNormalize(select(dot(nIn, nIn) > 0.0f, nIn, Float3(0.0f, 1.0f, 0.0f)));
+  Sh16 acc = visPrior(s, n);
   for (int k = 0; k < int(s.count); k++) {
     Int row = Int(k);
-    Float v = visSample(maps, data, s, k, p, n);
+    Float v = visResidual(maps, data, s, k, p, n);
     Sh16 wk = Sh16(texelFetch2D(data, Int(5), row, 0), texelFetch2D(data, Int(6), row, 0),
                    texelFetch2D(data, Int(7), row, 0), texelFetch2D(data, Int(8), row, 0));
     acc = sh16AddScaled(acc, wk, v);
   }
   return acc;
+}
+
+// ---- Shading with the fit (shade/shade_fis.h) ----
+// Glossy term, per sample direction w (the paper's eval_visibility in L vis f / pdf): for the V fit
+// the fitted function at w; for the V max(0, n.w) fit 1 + (fit(w) - tau(n.w)) / max(n.w, 0.05), the
+// fitted occlusion over the cosine (exactly 1 where the fit is the prior); clamped to [0, 1]
+// (ringing of the truncated series). Diffuse term: with the V max(0, n.w)
+// fit, E_vis / pi = (1/pi) sum_i L_i c_i, the double product of the raw lighting SH L (order 4,
+// inputs/sh_irradiance.h bands 0-3) and the transfer c (orthonormal basis), clamped at 0; with V
+// alone, the unshadowed E / pi times the visibility at the normal (an approximation: the product of
+// V and the cosine is not formed).
+const uint kFisVisNone = 0u;
+const uint kFisVisCos = 1u;  // the fit holds V max(0, n.w)
+const uint kFisVisV = 2u;    // the fit holds V
+
+struct VisLighting {
+  Sh16 r;
+  Sh16 g;
+  Sh16 b;
+};
+
+Float visAt(uint visMode, Sh16 c, Float3 n, Float3 w) {
+  PRECISE Float f = sh16Dot(c, sh16Basis(w));
+  PRECISE Float cosW = dot(n, w);
+  PRECISE Float tau = 0.25f + 0.5f * cosW + 0.15625f * (3.0f * (cosW * cosW) - 1.0f);
+  PRECISE Float occ = 1.0f + exDiv(f - tau, max(cosW, 0.05f));
+  Float v = select(visMode == kFisVisCos, occ, f);
+  return clamp(v, 0.0f, 1.0f);
+}
+
+Float3 visIrradiance(uint visMode, VisLighting L, Sh16 c, Float3 irr, Float3 n) {
+  PRECISE Float3 e = Float3(sh16Dot(L.r, c), sh16Dot(L.g, c), sh16Dot(L.b, c)) * 0.318309886f;
+  Float3 product = Float3(max(e.x, 0.0f), max(e.y, 0.0f), max(e.z, 0.0f));
+  PRECISE Float3 occluded = irr * visAt(kFisVisV, c, n, n);
+  return select(visMode == kFisVisCos, product, occluded);
 }

@@ -13,12 +13,14 @@ struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lo
 layout(std430, set = 0, binding = 2) readonly buffer Materials { MaterialGpu materials[]; };
 layout(set = 0, binding = 5) uniform sampler2DArray maps;  // inputs/material.h
 layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
-layout(std430, set = 0, binding = 4) readonly buffer Sh { vec4 sh[9]; };  // inputs/sh_irradiance.cpp
+// E/pi coefficients (0-8, inputs/sh_irradiance.cpp); with visibility also the raw lighting SH (9-20:
+// r, g, b, 4 vec4 each, inputs/visibility.h) and each pixel's 16 fit coefficients (21 + 4 p ...).
+layout(std430, set = 0, binding = 4) readonly buffer Sh { vec4 sh[]; };
 layout(push_constant) uniform Push {
   vec4 eye, fwd, right, down;
   float invW, invH, maxLod, intensity;
   uint width, count, materialCount, sampleCount;
-  float levelConstant, levelBias; uint mode, pad2;
+  float levelConstant, levelBias; uint mode, visMode;
 } pc;
 
 void main() {
@@ -30,7 +32,14 @@ void main() {
                                       r.maps.x, r.maps.y, r.maps.z, g.g1, g.g2, g.g3);
   vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
   ShRgb e = ShRgb(sh[0].xyz, sh[1].xyz, sh[2].xyz, sh[3].xyz, sh[4].xyz, sh[5].xyz, sh[6].xyz, sh[7].xyz, sh[8].xyz);
+  Sh16 vis = Sh16(vec4(0.0f), vec4(0.0f), vec4(0.0f), vec4(0.0f));
+  VisLighting vl = VisLighting(vis, vis, vis);
+  if (pc.visMode != kFisVisNone) {
+    uint o = 21u + 4u * p;
+    vis = Sh16(sh[o], sh[o + 1u], sh[o + 2u], sh[o + 3u]);
+    vl = VisLighting(Sh16(sh[9], sh[10], sh[11], sh[12]), Sh16(sh[13], sh[14], sh[15], sh[16]), Sh16(sh[17], sh[18], sh[19], sh[20]));
+  }
   vec4 c = shadeFis(atlas, pc.mode, pc.maxLod, pc.levelConstant, pc.levelBias, pc.sampleCount, pc.intensity, e, p, g.g0, g.g1, g.g2,
-                    pc.eye.xyz, ray, m.diffuse, m.specular, m.brdf);
+                    pc.eye.xyz, ray, m.diffuse, m.specular, m.brdf, pc.visMode, vis, vl);
   if (i < pc.count) color[i] = c;
 }

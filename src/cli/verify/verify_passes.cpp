@@ -101,10 +101,15 @@ int verifyShade(const VerifyOptions& opts, std::ostream& out) {
   GBuffer g = gbufferVulkan(*s.ctx, s.scene);  // one G-buffer for both shading passes
   // The technique's inputs, the same for both passes (fis: the emulator's atlas and SH irradiance).
   const ShadeInputs in = shadeInputsEmu(s.scene, *env.texture, *s.dev);
-  std::vector<float> e = shadeEmu(s.scene, g, in, *s.dev);
+  // With visibility (fis + "visibility" block): the same fit for both (the emulator's maps and fit of g;
+  // verify visibility checks that stage).
+  std::unique_ptr<VisibilityImage> vis;
+  if (in.visibility) vis = std::make_unique<VisibilityImage>(visibilityEmu(s.scene, g, *in.visibility, *s.dev));
+  std::vector<float> e = shadeEmu(s.scene, g, in, *s.dev, vis.get());
   ShadePassVk pass(*s.ctx, s.scene, in);
-  std::vector<float> v = pass.run(g);
-  out << "technique " << s.scene.technique << ", shading the Vulkan build's G-buffer in both builds\n";
+  std::vector<float> v = pass.run(g, vis.get());
+  out << "technique " << s.scene.technique << (vis ? " with SH visibility" : "")
+      << ", shading the Vulkan build's G-buffer in both builds\n";
   return finish("shade", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
 }
 
@@ -115,10 +120,18 @@ int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
   // Each build makes its own technique inputs (fis: atlas + MIP chain, SH irradiance).
   const ShadeInputs inE = shadeInputsEmu(s.scene, *env.texture, *s.dev);
   const ShadeInputs inV = shadeInputsVulkan(*s.ctx, s.scene, *env.texture);
-  std::vector<float> e = shadeEmu(s.scene, gbufferEmu(s.scene, *s.dev), inE, *s.dev);
+  const GBuffer gE = gbufferEmu(s.scene, *s.dev), gV = gbufferVulkan(*s.ctx, s.scene);
+  // With visibility, each build also renders its own shadow maps and fits them.
+  std::unique_ptr<VisibilityImage> visE, visV;
+  if (inE.visibility) {
+    visE = std::make_unique<VisibilityImage>(visibilityEmu(s.scene, gE, *inE.visibility, *s.dev));
+    visV = std::make_unique<VisibilityImage>(visibilityVulkan(*s.ctx, s.scene, gV, *inV.visibility));
+  }
+  std::vector<float> e = shadeEmu(s.scene, gE, inE, *s.dev, visE.get());
   ShadePassVk pass(*s.ctx, s.scene, inV);
-  std::vector<float> v = pass.run(gbufferVulkan(*s.ctx, s.scene));
-  out << "technique " << s.scene.technique << ", whole frames (G-buffer + shading) of each build\n";
+  std::vector<float> v = pass.run(gV, visV.get());
+  out << "technique " << s.scene.technique << (visE ? " with SH visibility (each build: shadow maps + fit)" : "")
+      << ", whole frames (G-buffer + shading) of each build\n";
   return finish("frame", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
 }
 
@@ -175,7 +188,13 @@ int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
       << ", fit " << (vs.fitCosine ? "V max(0, n.w)" : "V") << ", rank of M " << v.rank << "/16\n";
   std::vector<UlpTally> t;
   for (int c = 0; c < 16; ++c) t.push_back({"c" + std::to_string(c)});
-  for (size_t i = 0; i < e.coeffs.size(); ++i) t[i % 16].add(e.coeffs[i], k.coeffs[i]);
+  size_t diffGeometry = 0, diffBackground = 0;
+  for (size_t i = 0; i < e.coeffs.size(); ++i) {
+    t[i % 16].add(e.coeffs[i], k.coeffs[i]);
+    if (!sameBits(e.coeffs[i], k.coeffs[i])) ++(g.texels[i / 16 * kGbufFloats + 3] != 0.0f ? diffGeometry : diffBackground);
+  }
+  if (diffGeometry + diffBackground)
+    out << "differing values: " << diffGeometry << " on geometry, " << diffBackground << " on background pixels\n";
   return finish("visibility", printTallies(t, out), *s.ctx, opts, out);
 }
 
