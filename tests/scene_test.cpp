@@ -105,6 +105,33 @@ TEST(Scene, MisBlock) {
   EXPECT_NE(errorOf(p).find("kdtree-mis"), std::string::npos) << errorOf(p);  // the message lists the techniques
 }
 
+TEST(Scene, VisibilityBlock) {
+  const shadetwin::Scene b = shadetwin::loadScene(src("scenes/bunny.json"));  // the default scene uses it
+  EXPECT_EQ(b.visMaps, 16u);
+  EXPECT_EQ(b.visSize, 1024u);
+  EXPECT_TRUE(b.visFitCosine);
+  EXPECT_TRUE(b.visFilterEdge);
+  EXPECT_EQ(b.visFilterRadius, 2u);
+  const std::string ok = R"("camera": {"eye": [0, 0, 3], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/forest.exr"}, "objects": [{"mesh": "sphere"}])";
+  std::string p = writeTemp("vis1.json", "{" + ok + R"(, "visibility": {"maps": 4, "size": 256, "fit": "v", "filter": "none", "bias": 2}})");
+  const shadetwin::Scene s = shadetwin::loadScene(p);
+  EXPECT_EQ(s.visMaps, 4u);
+  EXPECT_FALSE(s.visFitCosine);
+  EXPECT_EQ(s.visFilterRadius, 0u);
+  EXPECT_EQ(s.visBias, 2.0f);
+  EXPECT_EQ(shadetwin::loadScene(writeTemp("vis0.json", "{" + ok + "}")).visMaps, 0u);  // no block: no shadow pass
+  p = writeTemp("vis2.json", "{" + ok + R"(, "visibility": {"fit": "cos"}})");
+  EXPECT_NE(errorOf(p).find("visibility.fit: unknown fit 'cos'"), std::string::npos) << errorOf(p);
+  p = writeTemp("vis3.json", "{" + ok + R"(, "visibility": {"map": 4}})");
+  EXPECT_NE(errorOf(p).find("visibility.map: unknown key"), std::string::npos) << errorOf(p);
+  p = writeTemp("vis4.json", "{" + ok + R"(, "visibility": {"maps": 0}})");
+  EXPECT_NE(errorOf(p).find("visibility.maps"), std::string::npos) << errorOf(p);
+  p = writeTemp("vis5.json", "{" + ok + R"(, "technique": "env", "visibility": {}})");
+  EXPECT_NE(errorOf(p).find("technique env does not read visibility"), std::string::npos) << errorOf(p);
+  p = writeTemp("vis6.json", "{" + ok + R"(, "visibility": {"filter": "gauss"}})");
+  EXPECT_NE(errorOf(p).find("visibility.filter: unknown filter 'gauss'"), std::string::npos) << errorOf(p);
+}
+
 TEST(Scene, LafortuneLobesAndMaterialMaps) {
   const std::string head = R"({"camera": {"eye": [0, 0, 3], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/forest.exr"}, "objects": [{"mesh": "sphere", "material": "m"}], "materials": [)";
   auto scene = [&](const std::string& name, const std::string& material) { return writeTemp(name, head + material + "]}"); };

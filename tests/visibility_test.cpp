@@ -227,4 +227,54 @@ TEST(Visibility, EightLaneFitEqualsScalarAndTheBunnyShadowsThePlinth) {
   EXPECT_LT(nearSum / nearN, 0.8 * (farSum / farN)) << nearSum / nearN << " vs " << farSum / farN;
 }
 
+TEST(Visibility, FilterAveragesTheSurfaceAndStopsAtEdges) {
+  // A synthetic 12 x 8 G-buffer: the left half a plane at depth z = 0 facing +z, the right half a
+  // plane at z = -1 (a depth step), one background pixel; coefficient c0 = 1 on the left, 3 on the
+  // right, c1 = the pixel's x. Box (radius 1): a left pixel next to the step mixes both sides; the
+  // edge-aware filter keeps it at 1; the background pixel keeps its own coefficients; 8 lanes equal
+  // the scalar build; a constant image stays constant.
+  shadetwin::GBuffer g;
+  g.width = 12, g.height = 8;
+  g.texels.assign(size_t(12) * 8 * shadetwin::kGbufFloats, 0.0f);
+  shadetwin::VisibilityImage img;
+  img.width = 12, img.height = 8;
+  img.coeffs.assign(size_t(12) * 8 * 16, 0.0f);
+  for (uint32_t y = 0; y < 8; ++y)
+    for (uint32_t x = 0; x < 12; ++x) {
+      float* t = &g.texels[(size_t(y) * 12 + x) * shadetwin::kGbufFloats];
+      const bool right = x >= 6;
+      t[0] = float(x) * 0.1f, t[1] = float(y) * 0.1f, t[2] = right ? -1.0f : 0.0f, t[3] = 1.0f;
+      t[4] = 0, t[5] = 0, t[6] = 1;
+      float* c = &img.coeffs[(size_t(y) * 12 + x) * 16];
+      c[0] = right ? 3.0f : 1.0f;
+      c[1] = float(x);
+    }
+  g.texels[(size_t(7) * 12 + 0) * shadetwin::kGbufFloats + 3] = 0.0f;  // (0, 7): background
+  img.coeffs[(size_t(7) * 12 + 0) * 16] = 42.0f;
+  const shadetwin::Scene scene = bunny();
+  shadetwin::VisibilitySetup v = uniformSetup(4, true, scene);
+  v.settings.filterRadius = 1;
+  v.planeTolerance = 0.05f;
+  auto at = [&](const shadetwin::VisibilityImage& i, uint32_t x, uint32_t y, int k) { return i.coeffs[(size_t(y) * 12 + x) * 16 + size_t(k)]; };
+  v.settings.filterEdgeAware = false;
+  const auto box = shadetwin::visibilityFilterEmu(g, img, v, dev());
+  EXPECT_FLOAT_EQ(at(box, 5, 3, 0), (6.0f * 1 + 3.0f * 3) / 9.0f);  // 3 x 3 around x = 5 includes x = 6
+  EXPECT_FLOAT_EQ(at(box, 2, 3, 1), 2.0f);                          // mean of x = 1, 2, 3
+  EXPECT_EQ(at(box, 0, 7, 0), 42.0f);                               // background keeps its own
+  v.settings.filterEdgeAware = true;
+  const auto edge = shadetwin::visibilityFilterEmu(g, img, v, dev());
+  EXPECT_FLOAT_EQ(at(edge, 5, 3, 0), 1.0f);
+  EXPECT_FLOAT_EQ(at(edge, 6, 3, 0), 3.0f);
+  EXPECT_FLOAT_EQ(at(edge, 5, 3, 1), 4.5f);  // x = 4, 5 only (x = 6 is behind the step)
+  // The scalar build of visFilter gives the same bits as the 8-lane pass at every pixel.
+  namespace sc = shadetwin::shade::scalar;
+  const emu::Texture ct = shadetwin::visibilityCoeffTexture(img), gt = shadetwin::gbufferPositionNormalTexture(g);
+  const auto cs = shadetwin::environmentSampler(ct, dev(), false), gs = shadetwin::environmentSampler(gt, dev(), false);
+  for (uint32_t y = 0; y < 8; ++y)
+    for (uint32_t x = 0; x < 12; ++x) {
+      const auto c = flat(sc::visFilter(cs, gs, int32_t(x), int32_t(y), 12, 8, 1, sc::kVisFilterEdge, 0.05f));
+      EXPECT_EQ(0, std::memcmp(c.data(), &edge.coeffs[(size_t(y) * 12 + x) * 16], 64)) << x << "," << y;
+    }
+}
+
 }  // namespace

@@ -50,8 +50,8 @@ uint64_t shadeInputsKey(const Scene& scene, const emu::Texture& env) {
   };
   const uint32_t dims[6] = {env.width(), env.height(), uint32_t(env.format()), scene.fisFaceSize, scene.fisSamples, scene.envBlocks};
   mix(dims, sizeof dims);
-  const float vis[5] = {float(scene.visMaps), float(scene.visSize), scene.visFitCosine ? 1.0f : 0.0f, scene.visBias,
-                        scene.visSlopeBias};
+  const float vis[7] = {float(scene.visMaps), float(scene.visSize), scene.visFitCosine ? 1.0f : 0.0f, scene.visBias,
+                        scene.visSlopeBias, float(scene.visFilterRadius), scene.visFilterEdge ? 1.0f : 0.0f};
   mix(vis, sizeof vis);
   mix(env.levels()[0].data(), env.levels()[0].size());
   mix(scene.technique.data(), scene.technique.size());

@@ -51,6 +51,8 @@ VisibilitySettings visibilitySettings(const Scene& scene) {
   s.fitCosine = scene.visFitCosine;
   s.biasTexels = scene.visBias;
   s.biasSlopeTexels = scene.visSlopeBias;
+  s.filterRadius = scene.visFilterRadius;
+  s.filterEdgeAware = scene.visFilterEdge;
   return s;
 }
 
@@ -83,6 +85,10 @@ VisibilitySetup visibilitySetup(const Scene& scene, const emu::Texture& env, con
   v.pinv = sh16PseudoInverse(v.directions, s.muRelative, &v.rank);
   v.biasConst = s.biasTexels / float(s.size);
   v.biasSlope = s.biasSlopeTexels / float(s.size);
+  const auto [lo, hi] = scene.bounds();
+  double r2 = 0;
+  for (int k = 0; k < 3; ++k) r2 += 0.25 * (double(hi[size_t(k)]) - lo[size_t(k)]) * (double(hi[size_t(k)]) - lo[size_t(k)]);
+  v.planeTolerance = float(s.planeTolerance * std::sqrt(r2));
   std::vector<float> table(size_t(9) * 4 * s.maps, 0.0f);
   for (uint32_t k = 0; k < s.maps; ++k) {
     const Mat4 m = shadowViewProjection(scene, v.directions[k]);

@@ -22,6 +22,11 @@ struct VisibilitySettings {
   // b0 = biasTexels / S + slope biasSlopeTexels / S * min(tan theta, 10) (shade/visibility.h).
   float biasTexels = 1.0f, biasSlopeTexels = 1.5f;
   double muRelative = 1e-4;  // eigenvalue filter of the pseudo-inverse: mu = muRelative * lambda_max
+  // Spatial filter of the coefficient images: radius in pixels (0: none), edge-aware (same surface:
+  // plane distance <= planeTolerance x the scene's bounding radius, normals within ~25 degrees) or box.
+  uint32_t filterRadius = 2;
+  bool filterEdgeAware = true;
+  float planeTolerance = 0.02f;
 };
 
 struct VisibilitySetup {
@@ -33,6 +38,7 @@ struct VisibilitySetup {
   uint32_t rank = 0;                         // eigenvalues of M above mu
   bool uniformFallback = false;              // no positive luminance: directions uniform on the sphere
   float biasConst = 0, biasSlope = 0;        // the settings' bias in depth units
+  float planeTolerance = 0;                  // the filter's plane distance in world units
 };
 
 /// The 16 real SH basis values of unit vector d (shade/visibility.h sh16Basis), in double.

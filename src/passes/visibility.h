@@ -29,8 +29,16 @@ VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, con
                                  const emu::DeviceProfile& dev);
 VisibilityImage visibilityFitVulkan(vk::Context& ctx, const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v);
 
+/// The spatial filter of the coefficient images (shade/visibility.h visFilter); radius 0: none.
+VisibilityImage visibilityFilterEmu(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v,
+                                    const emu::DeviceProfile& dev);
+VisibilityImage visibilityFilterVulkan(vk::Context& ctx, const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v);
+/// The coefficient image and the G-buffer's G0, G1 as the RGBA32F 2D arrays the filter kernels read.
+emu::Texture visibilityCoeffTexture(const VisibilityImage& in);
+emu::Texture gbufferPositionNormalTexture(const GBuffer& g);
+
 struct VisibilityTimes {
-  double shadowMs = 0, fitMs = 0;
+  double shadowMs = 0, fitMs = 0, filterMs = 0;
 };
 /// A frame's visibility on one build: the K shadow maps of v's directions, then the fit of `g`.
 VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const VisibilitySetup& v, const emu::DeviceProfile& dev,

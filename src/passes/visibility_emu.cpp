@@ -53,6 +53,55 @@ VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, con
   return out;
 }
 
+emu::Texture visibilityCoeffTexture(const VisibilityImage& in) {
+  const size_t n = size_t(in.width) * in.height;
+  std::vector<std::vector<uint8_t>> level(1, std::vector<uint8_t>(n * 64));
+  float* d = reinterpret_cast<float*>(level[0].data());
+  for (size_t j = 0; j < 4; ++j)
+    for (size_t p = 0; p < n; ++p) std::memcpy(d + (j * n + p) * 4, &in.coeffs[p * 16 + 4 * j], 16);
+  return emu::Texture(emu::Format::RGBA32F, in.width, in.height, 4, std::move(level));
+}
+
+emu::Texture gbufferPositionNormalTexture(const GBuffer& g) {
+  const size_t n = size_t(g.width) * g.height;
+  std::vector<std::vector<uint8_t>> level(1, std::vector<uint8_t>(n * 32));
+  float* d = reinterpret_cast<float*>(level[0].data());
+  for (size_t j = 0; j < 2; ++j)
+    for (size_t p = 0; p < n; ++p) std::memcpy(d + (j * n + p) * 4, &g.texels[p * kGbufFloats + 4 * j], 16);
+  return emu::Texture(emu::Format::RGBA32F, g.width, g.height, 2, std::move(level));
+}
+
+VisibilityImage visibilityFilterEmu(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v,
+                                    const emu::DeviceProfile& dev) {
+  if (v.settings.filterRadius == 0) return in;
+  using I8 = emu::I32<8>;
+  const emu::Texture ct = visibilityCoeffTexture(in), gt = gbufferPositionNormalTexture(g);
+  const shade::Sampler2D cs = environmentSampler(ct, dev, false), gs = environmentSampler(gt, dev, false);
+  VisibilityImage out;
+  out.width = in.width, out.height = in.height;
+  const size_t n = size_t(in.width) * in.height;
+  out.coeffs.assign(n * 16, 0.0f);
+  const uint32_t mode = v.settings.filterEdgeAware ? shade::x8::kVisFilterEdge : shade::x8::kVisFilterBox;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + 7) / 8, 64), [&](const tbb::blocked_range<size_t>& r) {
+    emu::DenormalScope mode_(dev.denormCompute == emu::DenormMode::Flush);
+    for (size_t b = r.begin(); b != r.end(); ++b) {
+      I8 x, y;
+      for (int l = 0; l < 8; ++l) {
+        const size_t i = std::min(b * 8 + size_t(l), n - 1);  // tail lanes repeat the last pixel
+        x.set(l, int32_t(i % in.width)), y.set(l, int32_t(i / in.width));
+      }
+      const shade::x8::Sh16 c = shade::x8::visFilter(cs, gs, x, y, int(in.width), int(in.height),
+                                                     int(v.settings.filterRadius), mode, v.planeTolerance);
+      const shade::V4<emu::F32<8>> q[4] = {c.a, c.b, c.c, c.d};
+      for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
+        float* o = &out.coeffs[(b * 8 + size_t(l)) * 16];
+        for (int j = 0; j < 4; ++j) o[4 * j] = q[j].x[l], o[4 * j + 1] = q[j].y[l], o[4 * j + 2] = q[j].z[l], o[4 * j + 3] = q[j].w[l];
+      }
+    }
+  });
+  return out;
+}
+
 VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const VisibilitySetup& v, const emu::DeviceProfile& dev,
                               VisibilityTimes* times) {
   VisibilityTimes t;
@@ -61,6 +110,7 @@ VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const Visibi
   const emu::Texture maps = shadowMapArray(sm);
   VisibilityImage img;
   t.fitMs = timeMs([&] { img = visibilityFitEmu(g, maps, v, dev); });
+  t.filterMs = timeMs([&] { img = visibilityFilterEmu(g, img, v, dev); });
   if (times) *times = t;
   return img;
 }

@@ -7,6 +7,14 @@
 namespace shadetwin {
 namespace {
 #include "visibility_fit_comp.inc"
+#include "visibility_filter_comp.inc"
+
+struct FilterPush {
+  int32_t width, height, radius;
+  uint32_t mode, pixels;
+  float planeTolerance;
+};
+static_assert(sizeof(FilterPush) == 24, "FilterPush must match the push block of visibility_filter.comp");
 
 struct FitPush {
   uint32_t count, size, fit, pixels;
@@ -38,6 +46,30 @@ VisibilityImage visibilityFitVulkan(vk::Context& ctx, const GBuffer& g, const em
   return r;
 }
 
+VisibilityImage visibilityFilterVulkan(vk::Context& ctx, const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v) {
+  if (v.settings.filterRadius == 0) return in;
+  const emu::Texture ct = visibilityCoeffTexture(in), gt = gbufferPositionNormalTexture(g);
+  vk::Image cImg(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, ct.width(), ct.height(), ct.layers(), ct.levels(), 16);
+  vk::Image gImg(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, gt.width(), gt.height(), gt.layers(), gt.levels(), 16);
+  vk::Sampler sampler(ctx, dataTextureSamplerInfo());  // texelFetch only
+  const size_t n = size_t(in.width) * in.height;
+  vk::Buffer out(ctx, n * 64);
+  static constexpr VkDescriptorType kLayout[3] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  vk::Kernel filter(ctx, vk::Stage::Compute, kSpv_visibility_filter_comp, kLayout, sizeof(FilterPush));
+  const FilterPush push{int32_t(in.width), int32_t(in.height), int32_t(v.settings.filterRadius),
+                        v.settings.filterEdgeAware ? 1u : 0u, uint32_t(n), v.planeTolerance};
+  const vk::Binding b[3] = {{kLayout[0], VK_NULL_HANDLE, cImg.view(), sampler.handle()},
+                            {kLayout[1], VK_NULL_HANDLE, gImg.view(), sampler.handle()},
+                            {kLayout[2], out.handle()}};
+  filter.run(b, &push, uint32_t(n));
+  VisibilityImage r;
+  r.width = in.width, r.height = in.height;
+  r.coeffs.resize(n * 16);
+  std::memcpy(r.coeffs.data(), out.as<float>(), n * 64);
+  return r;
+}
+
 VisibilityImage visibilityVulkan(vk::Context& ctx, const Scene& scene, const GBuffer& g, const VisibilitySetup& v,
                                  VisibilityTimes* times) {
   VisibilityTimes t;
@@ -46,6 +78,7 @@ VisibilityImage visibilityVulkan(vk::Context& ctx, const Scene& scene, const GBu
   t.shadowMs = pass.lastMs;
   VisibilityImage img;
   t.fitMs = timeMs([&] { img = visibilityFitVulkan(ctx, g, maps, v); });
+  t.filterMs = timeMs([&] { img = visibilityFilterVulkan(ctx, g, img, v); });
   if (times) *times = t;
   return img;
 }

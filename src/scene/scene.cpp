@@ -234,8 +234,14 @@ Scene loadScene(const std::string& path) {
   }
   if (j.contains("visibility")) {
     const json& f = j["visibility"];
-    if (!f.is_object()) R.fail("visibility", "expected an object with maps, size, fit, bias, slope_bias");
-    R.keys(f, "visibility", {"maps", "size", "fit", "bias", "slope_bias"});
+    if (!f.is_object()) R.fail("visibility", "expected an object with maps, size, fit, bias, slope_bias, filter, radius");
+    R.keys(f, "visibility", {"maps", "size", "fit", "bias", "slope_bias", "filter", "radius"});
+    s.visFilterRadius = uint32_t(R.number(f, "visibility.radius", 2, 0, 16));
+    const std::string filter = R.string(f, "visibility.filter", "edge");
+    if (filter != "edge" && filter != "box" && filter != "none")
+      R.fail("visibility.filter", "unknown filter '" + filter + "' (expected edge, box or none)");
+    s.visFilterEdge = filter == "edge";
+    if (filter == "none") s.visFilterRadius = 0;
     s.visMaps = uint32_t(R.number(f, "visibility.maps", 16, 1, 1024));
     s.visSize = uint32_t(R.number(f, "visibility.size", 1024, 16, 8192));
     s.visBias = R.number(f, "visibility.bias", 1.0f, 0, 1000);

@@ -106,6 +106,8 @@ struct Scene {
   uint32_t visSize = 1024;
   bool visFitCosine = true;
   float visBias = 1.0f, visSlopeBias = 1.5f;
+  uint32_t visFilterRadius = 2;  // spatial filter of the coefficients: radius (0: none), edge-aware or box
+  bool visFilterEdge = true;
   uint32_t misFrame = 0;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;

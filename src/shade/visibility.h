@@ -104,7 +104,8 @@ Sh16 visFit(Sampler2DArray maps, Sampler2D data, VisSettings s, Float3 p, Float3
 // fitted occlusion over the cosine (exactly 1 where the fit is the prior); clamped to [0, 1]
 // (ringing of the truncated series). Diffuse term: with the V max(0, n.w)
 // fit, E_vis / pi = (1/pi) sum_i L_i c_i, the double product of the raw lighting SH L (order 4,
-// inputs/sh_irradiance.h bands 0-3) and the transfer c (orthonormal basis), clamped at 0; with V
+// inputs/sh_irradiance.h bands 0-3) and the transfer c (orthonormal basis), clamped to [0, E / pi]
+// (0 <= V <= 1); with V
 // alone, the unshadowed E / pi times the visibility at the normal (an approximation: the product of
 // V and the cosine is not formed).
 const uint kFisVisNone = 0u;
@@ -128,7 +129,58 @@ Float visAt(uint visMode, Sh16 c, Float3 n, Float3 w) {
 
 Float3 visIrradiance(uint visMode, VisLighting L, Sh16 c, Float3 irr, Float3 n) {
   PRECISE Float3 e = Float3(sh16Dot(L.r, c), sh16Dot(L.g, c), sh16Dot(L.b, c)) * 0.318309886f;
-  Float3 product = Float3(max(e.x, 0.0f), max(e.y, 0.0f), max(e.z, 0.0f));
+  // V <= 1: never above the unshadowed irradiance (the truncated fit can ring above it).
+  Float3 product = Float3(min(max(e.x, 0.0f), irr.x), min(max(e.y, 0.0f), irr.y), min(max(e.z, 0.0f), irr.z));
   PRECISE Float3 occluded = irr * visAt(kFisVisV, c, n, n);
   return select(visMode == kFisVisCos, product, occluded);
+}
+
+// ---- Spatial filter of the coefficient images (the paper's s5.2: hides shadow-map aliasing) ----
+// The mean of the 16 coefficients over the (2r + 1)^2 pixels around (x, y) that hold geometry (G0.w
+// != 0) and, with edgeAware, lie on the centre's surface: |n . (q - p)| <= planeTolerance (world
+// units) and the normals within about 25 degrees (n_q . n_p >= 0.9 |n_q|, G1 is not renormalised).
+// A box filter as in the paper otherwise. Weights are 0 or 1 and the sum runs dy, then dx, from -r,
+// so both builds add the same floats; the mean is one exact division. Pixels without geometry (or
+// with no neighbour) keep their own coefficients. coeffs: RGBA32F array, layer j = coefficients
+// 4j..4j+3; gbuf: RGBA32F array, layer 0 = G0, layer 1 = G1.
+const uint kVisFilterBox = 0u;
+const uint kVisFilterEdge = 1u;
+
+Sh16 visFilter(Sampler2DArray coeffs, Sampler2DArray gbuf, Int x, Int y, int width, int height, int radius, uint mode,
+               float planeTolerance) {
+  Float4 g0 = texelFetchLayer(gbuf, x, y, Int(0), 0);
+  Float4 g1 = texelFetchLayer(gbuf, x, y, Int(1), 0);
+  Float3 p = Float3(g0.x, g0.y, g0.z);
+  Float3 n = exNormalize(select(dot(Float3(g1.x, g1.y, g1.z), Float3(g1.x, g1.y, g1.z)) > 0.0f, Float3(g1.x, g1.y, g1.z),
+                                Float3(0.0f, 1.0f, 0.0f)));
+  Float4 zero = Float4(0.0f, 0.0f, 0.0f, 0.0f);
+  Sh16 acc = Sh16(zero, zero, zero, zero);
+  PRECISE Float count = Float(0.0f);
+  for (int dy = -radius; dy <= radius; dy++) {
+    for (int dx = -radius; dx <= radius; dx++) {
+      Int qx = x + Int(dx);
+      Int qy = y + Int(dy);
+      Mask inside = qx >= Int(0) && qx < Int(width) && qy >= Int(0) && qy < Int(height);
+      Int cx = clamp(qx, Int(0), Int(width - 1));
+      Int cy = clamp(qy, Int(0), Int(height - 1));
+      Float4 q0 = texelFetchLayer(gbuf, cx, cy, Int(0), 0);
+      Float4 q1 = texelFetchLayer(gbuf, cx, cy, Int(1), 0);
+      Float3 nq = Float3(q1.x, q1.y, q1.z);
+      PRECISE Float plane = abs(dot(n, Float3(q0.x, q0.y, q0.z) - p));
+      PRECISE Float facing = dot(n, nq) - 0.9f * exSqrt(dot(nq, nq));
+      Mask same = plane <= planeTolerance && facing >= 0.0f;
+      Mask use = inside && q0.w != 0.0f && (Mask(mode == kVisFilterBox) || same);
+      Float w = select(use, Float(1.0f), Float(0.0f));
+      Sh16 c = Sh16(texelFetchLayer(coeffs, cx, cy, Int(0), 0), texelFetchLayer(coeffs, cx, cy, Int(1), 0),
+                    texelFetchLayer(coeffs, cx, cy, Int(2), 0), texelFetchLayer(coeffs, cx, cy, Int(3), 0));
+      acc = sh16AddScaled(acc, c, w);
+      count = count + w;
+    }
+  }
+  Sh16 self = Sh16(texelFetchLayer(coeffs, x, y, Int(0), 0), texelFetchLayer(coeffs, x, y, Int(1), 0),
+                   texelFetchLayer(coeffs, x, y, Int(2), 0), texelFetchLayer(coeffs, x, y, Int(3), 0));
+  PRECISE Float inv = exDiv(1.0f, max(count, 1.0f));
+  Mask keep = g0.w == 0.0f || count == 0.0f;
+  return Sh16(select(keep, self.a, acc.a * inv), select(keep, self.b, acc.b * inv), select(keep, self.c, acc.c * inv),
+              select(keep, self.d, acc.d * inv));
 }

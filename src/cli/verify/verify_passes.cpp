@@ -195,6 +195,15 @@ int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
   }
   if (diffGeometry + diffBackground)
     out << "differing values: " << diffGeometry << " on geometry, " << diffBackground << " on background pixels\n";
+  // The spatial filter (radius 2, edge-aware, the scene defaults; box with --fit-v to cover both) of
+  // the emulator's fit on both builds.
+  VisibilitySetup vf = v;
+  vf.settings.filterRadius = 2;
+  vf.settings.filterEdgeAware = !opts.visibilityV;
+  const VisibilityImage fe = visibilityFilterEmu(g, e, vf, *s.dev), fk = visibilityFilterVulkan(*s.ctx, g, e, vf);
+  out << "filter: radius " << vf.settings.filterRadius << ", " << (vf.settings.filterEdgeAware ? "edge-aware" : "box") << "\n";
+  for (int c = 0; c < 16; ++c) t.push_back({"filtered c" + std::to_string(c)});
+  for (size_t i = 0; i < fe.coeffs.size(); ++i) t[16 + i % 16].add(fe.coeffs[i], fk.coeffs[i]);
   return finish("visibility", printTallies(t, out), *s.ctx, opts, out);
 }
 
