@@ -34,6 +34,9 @@ void visibilityLines(std::ostream& passes, const char* build, const VisibilitySe
          << ")\n";
   passes << "  visibility fit (" << build << ")    " << std::setw(8) << t.fitMs << " ms  (order-4 SH, "
          << (v.settings.fitCosine ? "V max(0, n.w)" : "V") << ", rank " << v.rank << "/16)\n";
+  if (v.settings.filterRadius)
+    passes << "  visibility filter (" << build << ") " << std::setw(8) << t.filterMs << " ms  ("
+           << (v.settings.filterEdgeAware ? "edge-aware" : "box") << ", radius " << v.settings.filterRadius << ")\n";
 }
 
 // Output path of frame f: OUT itself for a single frame, else OUT's stem + _NNNN.

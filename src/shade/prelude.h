@@ -54,6 +54,8 @@ NativeResult nativeDiv(float a, float b) { return NativeResult(false, 0.0f); }
 NativeResult nativeSqrt(float x) { return NativeResult(false, 0.0f); }
 // texelFetch of a 2D texture with separate coordinates (the C++ side has no ivec2).
 vec4 texelFetch2D(sampler2D s, int x, int y, int level) { return texelFetch(s, ivec2(x, y), level); }
+// texelFetch at uniform coordinates (the same texel for every invocation: a table row).
+vec4 texelFetchUniform(sampler2D s, int x, int y, int level) { return texelFetch(s, ivec2(x, y), level); }
 // texelFetch of a 2D array texture with separate coordinates.
 vec4 texelFetchLayer(sampler2DArray s, int x, int y, int layer, int level) { return texelFetch(s, ivec3(x, y, layer), level); }
 // textureLod of a 2D array texture with the layer apart, and the size of its level 0 as floats.
@@ -109,6 +111,11 @@ inline NativeResult nativeSqrt(Float x) { return ::shadetwin::shade::nativeSqrt(
 using Sampler2DArray = ::shadetwin::shade::Sampler2D;  // the emulated texture has layers
 inline Float4 textureLodLayer(const Sampler2DArray& s, Float2 uv, Float layer, Float lod) {
   return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod, layer);
+}
+// One load broadcast to every lane (a GPU's uniform fetch; the emulator loads once, not per lane).
+inline Float4 texelFetchUniform(const Sampler2D& s, int x, int y, int level) {
+  const ::shadetwin::shade::V4<float> t = ::shadetwin::shade::texelFetchLanes(s, int32_t(x), int32_t(y), level);
+  return Float4(Float(t.x), Float(t.y), Float(t.z), Float(t.w));
 }
 inline Float4 texelFetchLayer(const Sampler2DArray& s, Int x, Int y, Int layer, int level) {
   return ::shadetwin::shade::texelFetchLanes(s, x, y, level, layer);

@@ -50,11 +50,11 @@ struct VisSettings {
 // matrix's columns, 4 omega_k.
 Float visResidual(Sampler2DArray maps, Sampler2D data, VisSettings s, int k, Float3 p, Float3 n) {
   Int row = Int(k);
-  Float4 m0 = texelFetch2D(data, Int(0), row, 0);
-  Float4 m1 = texelFetch2D(data, Int(1), row, 0);
-  Float4 m2 = texelFetch2D(data, Int(2), row, 0);
-  Float4 m3 = texelFetch2D(data, Int(3), row, 0);
-  Float4 w = texelFetch2D(data, Int(4), row, 0);
+  Float4 m0 = texelFetchUniform(data, 0, k, 0);
+  Float4 m1 = texelFetchUniform(data, 1, k, 0);
+  Float4 m2 = texelFetchUniform(data, 2, k, 0);
+  Float4 m3 = texelFetchUniform(data, 3, k, 0);
+  Float4 w = texelFetchUniform(data, 4, k, 0);
   Float4 clip = xformPoint(m0, m1, m2, m3, p);
   PRECISE Float halfSize = 0.5f * float(s.size);
   Int last = Int(int(s.size) - 1);
@@ -89,10 +89,9 @@ Sh16 visFit(Sampler2DArray maps, Sampler2D data, VisSettings s, Float3 p, Float3
   Float3 n = exNormalize(select(dot(nIn, nIn) > 0.0f, nIn, Float3(0.0f, 1.0f, 0.0f)));
   Sh16 acc = visPrior(s, n);
   for (int k = 0; k < int(s.count); k++) {
-    Int row = Int(k);
     Float v = visResidual(maps, data, s, k, p, n);
-    Sh16 wk = Sh16(texelFetch2D(data, Int(5), row, 0), texelFetch2D(data, Int(6), row, 0),
-                   texelFetch2D(data, Int(7), row, 0), texelFetch2D(data, Int(8), row, 0));
+    Sh16 wk = Sh16(texelFetchUniform(data, 5, k, 0), texelFetchUniform(data, 6, k, 0), texelFetchUniform(data, 7, k, 0),
+                   texelFetchUniform(data, 8, k, 0));
     acc = sh16AddScaled(acc, wk, v);
   }
   return acc;
