@@ -54,6 +54,19 @@ template <int N>
 V4<emu::F32<N>> texelFetchLanes(const Sampler2D& s, emu::I32<N> x, emu::I32<N> y, int level,
                                 emu::I32<N> layer = emu::I32<N>(0)) {
   V4<emu::F32<N>> r;
+  if (s.tex->format() == emu::Format::RGBA32F) {  // the common case: direct 16-byte loads, the same bits
+    const uint32_t w = s.tex->levelWidth(uint32_t(level)), h = s.tex->levelHeight(uint32_t(level));
+    const uint8_t* base = s.tex->levels()[size_t(level)].data();
+    for (int i = 0; i < N; ++i) {
+      float v[4];
+      std::memcpy(v, base + ((size_t(uint32_t(layer[i])) * h + uint32_t(y[i])) * w + uint32_t(x[i])) * 16, 16);
+      r.x.set(i, v[0]);
+      r.y.set(i, v[1]);
+      r.z.set(i, v[2]);
+      r.w.set(i, v[3]);
+    }
+    return r;
+  }
   for (int i = 0; i < N; ++i) {
     emu::Texel4 t = emu::texelFetch(*s.tex, x[i], y[i], layer[i], level);
     r.x.set(i, t.r);

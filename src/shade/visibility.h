@@ -137,7 +137,8 @@ Float3 visIrradiance(uint visMode, VisLighting L, Sh16 c, Float3 irr, Float3 n) 
 // ---- Spatial filter of the coefficient images (the paper's s5.2: hides shadow-map aliasing) ----
 // The mean of the 16 coefficients over the (2r + 1)^2 pixels around (x, y) that hold geometry (G0.w
 // != 0) and, with edgeAware, lie on the centre's surface: |n . (q - p)| <= planeTolerance (world
-// units) and the normals within about 25 degrees (n_q . n_p >= 0.9 |n_q|, G1 is not renormalised).
+// units) and the normals within about 25 degrees (n_q . n_p >= 0.9 |n_q|, compared squared; G1 is
+// not renormalised).
 // A box filter as in the paper otherwise. Weights are 0 or 1 and the sum runs dy, then dx, from -r,
 // so both builds add the same floats; the mean is one exact division. Pixels without geometry (or
 // with no neighbour) keep their own coefficients. coeffs: RGBA32F array, layer j = coefficients
@@ -166,8 +167,9 @@ Sh16 visFilter(Sampler2DArray coeffs, Sampler2DArray gbuf, Int x, Int y, int wid
       Float4 q1 = texelFetchLayer(gbuf, cx, cy, Int(1), 0);
       Float3 nq = Float3(q1.x, q1.y, q1.z);
       PRECISE Float plane = abs(dot(n, Float3(q0.x, q0.y, q0.z) - p));
-      PRECISE Float facing = dot(n, nq) - 0.9f * exSqrt(dot(nq, nq));
-      Mask same = plane <= planeTolerance && facing >= 0.0f;
+      PRECISE Float d = dot(n, nq);
+      PRECISE Float facing = d * d - 0.81f * dot(nq, nq);  // n . n_q >= 0.9 |n_q|, squared (d >= 0)
+      Mask same = plane <= planeTolerance && d >= 0.0f && facing >= 0.0f;
       Mask use = inside && q0.w != 0.0f && (Mask(mode == kVisFilterBox) || same);
       Float w = select(use, Float(1.0f), Float(0.0f));
       Sh16 c = Sh16(texelFetchLayer(coeffs, cx, cy, Int(0), 0), texelFetchLayer(coeffs, cx, cy, Int(1), 0),
