@@ -114,6 +114,8 @@ int main(int argc, char** argv) {
   sweep->add_option("--height", so.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   sweep->add_option("--device", so.device, "Vulkan device (substring of its name; default lavapipe)");
   sweep->add_flag("!--no-vulkan", so.vulkan, "emulator only");
+  sweep->add_option("--vis-maps", so.visMaps,
+                    "comma-separated SH visibility map counts K for fis (0: none), against a reference with visibility");
   bench->add_option("--technique", bo.technique, "shading technique (default: the scene's); passes default to gbuffer,shade");
   bench->add_option("--samples", bo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
   try {

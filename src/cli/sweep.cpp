@@ -16,6 +16,7 @@
 #include "emu/device_profile.h"
 #include "util/compare.h"
 #include "util/image_io.h"
+#include "passes/visibility.h"
 #include "reference/reference.h"
 #include "inputs/env_sampling.h"
 #include "inputs/env_sampling_speed.h"
@@ -111,6 +112,13 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
       throw std::invalid_argument("--technique: '" + t +
                                   "' is not a sampling technique (fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis)");
   if (techniques.empty() || samples.empty()) throw std::invalid_argument("sweep: no techniques or no sample counts");
+  std::vector<uint32_t> visMaps;
+  for (const std::string& s : splitList(opts.visMaps)) {
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(s.c_str(), &end, 10);
+    if (*end || v > 1024) throw std::invalid_argument("--vis-maps: '" + s + "' is not a map count in [0, 1024]");
+    visMaps.push_back(uint32_t(v));
+  }
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
   EnvironmentMap env = loadEnvironment(scene.environment, quiet);
@@ -129,11 +137,12 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   } else {
     ReferenceOptions ro;
     ro.spp = opts.referenceSpp;
+    ro.visibility = !visMaps.empty();
     const auto t0 = std::chrono::steady_clock::now();
     ref = renderReference(scene, EnvImage{env.width, env.height, env.levels[0].data()}, ro);
     const std::string path = (std::filesystem::path(opts.out) / "reference.exr").string();
     writeExr(path, scene.width, scene.height, ref);
-    log << "  reference: " << ro.spp << " spp x 2 (MIS), " << std::fixed << std::setprecision(1) << msSince(t0) / 1000
+    log << "  reference: " << ro.spp << " spp x 2 (MIS" << (ro.visibility ? ", occlusion rays" : "") << "), " << std::fixed << std::setprecision(1) << msSince(t0) / 1000
         << " s, wrote " << path << "\n";
   }
 
@@ -193,6 +202,47 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   }
   if (std::any_of(techniques.begin(), techniques.end(), [](const std::string& t) { return usesMisPass(t); }))
     envSamplerStudy(opts, scene, *dev, ctx.get(), log);
+  if (!visMaps.empty()) {
+    // The SH visibility study: fis at the scene's sample count with K maps (the scene's other
+    // visibility settings), each build its own maps, fit and filter of its own G-buffer.
+    const std::string vPath = (std::filesystem::path(opts.out) / "visibility.csv").string();
+    std::ofstream vcsv(vPath);
+    if (!vcsv) throw std::runtime_error("sweep: cannot write " + vPath);
+    vcsv << "maps,samples,rank,ms_shadow_emu,ms_fit_emu,ms_filter_emu,ms_shade_emu,ms_shadow_vulkan,ms_fit_vulkan,ms_filter_vulkan,"
+            "ms_shade_vulkan,rmse,relmse,psnr,bit_identical,values\n";
+    scene.technique = "fis";
+    for (uint32_t K : visMaps) {
+      scene.visMaps = K;
+      const ShadeInputs in = shadeInputsEmu(scene, *env.texture, *dev);
+      VisibilityTimes te, tv;
+      std::unique_ptr<VisibilityImage> vis;
+      if (in.visibility) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *in.visibility, *dev, &te));
+      std::vector<float> img;
+      const double msShade = timeMs([&] { shadeEmu(scene, g, in, *dev, img, vis.get()); });
+      double msVk = NAN;
+      size_t same = 0;
+      if (ctx) {
+        std::unique_ptr<VisibilityImage> visV;
+        if (in.visibility) visV = std::make_unique<VisibilityImage>(visibilityVulkan(*ctx, scene, gv, *in.visibility, &tv));
+        ShadePassVk pass(*ctx, scene, in);
+        const std::vector<float> v = pass.run(gv, visV.get());
+        msVk = pass.lastMs;
+        for (size_t i = 0; i < v.size(); ++i) same += std::memcmp(&v[i], &img[i], 4) == 0;
+      }
+      const ImageMetrics m = imageMetrics(img, ref, covered);
+      const uint32_t rank = in.visibility ? in.visibility->rank : 0;
+      vcsv << std::fixed << K << "," << scene.fisSamples << "," << rank << "," << std::setprecision(2) << te.shadowMs << "," << te.fitMs
+           << "," << te.filterMs << "," << msShade << "," << tv.shadowMs << "," << tv.fitMs << "," << tv.filterMs << "," << msVk << ","
+           << std::setprecision(6) << m.rmse << "," << m.relMse << "," << std::setprecision(3) << m.psnr << "," << same << ","
+           << img.size() << "\n";
+      log << "  fis + visibility " << std::setw(3) << K << " maps (rank " << std::setw(2) << rank << ")  emu shadow "
+          << std::setprecision(1) << te.shadowMs << " + fit " << te.fitMs << " + filter " << te.filterMs << " + shade " << msShade
+          << " ms  RMSE " << std::setprecision(5) << m.rmse << "  PSNR " << std::setprecision(2) << m.psnr << " dB";
+      if (ctx) log << "  " << same << "/" << img.size() << " bit-identical";
+      log << "\n";
+    }
+    log << "wrote " << vPath << "\n";
+  }
   const std::string stem = std::filesystem::path(opts.scene).stem().string();
   const std::string p1 = (std::filesystem::path(opts.out) / "rmse_vs_samples.png").string();
   const std::string p2 = (std::filesystem::path(opts.out) / "rmse_vs_time.png").string();

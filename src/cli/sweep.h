@@ -7,7 +7,9 @@
 // count is the sample pairs per pixel, and the sweep adds the sampler study, env_sampling.csv: per
 // map (at its size and at 2x2 its size, the paper's 2048 x 1024) and sampler, the kd-tree's fitted
 // alpha and L1 misfit, build time, table memory and compression against the inversion tables, and
-// samples per second of the C++ scalar, C++ 8-lane and Vulkan builds from one run.
+// samples per second of the C++ scalar, C++ 8-lane and Vulkan builds from one run. With --vis-maps the
+// reference traces visibility and the sweep adds the SH visibility study, visibility.csv: per map count
+// K the shadow-map, fit, filter and shading times of both builds, the bits, and the error.
 #pragma once
 #include <cstdint>
 #include <ostream>
@@ -27,6 +29,9 @@ struct SweepOptions {
   bool vulkan = true;            // --no-vulkan: emulator only
   uint32_t blocks = 0;           // kd-tree blocks (0: the scene's mis.blocks)
   std::string maps = "forest,courtyard,studio,city";  // sampler study (with a *-mis technique)
+  // SH visibility study (issue 16): comma-separated map counts K (0 = no visibility) of technique fis
+  // at the scene's sample count, against a reference with visibility; writes visibility.csv.
+  std::string visMaps;
 };
 
 int sweepCommand(const SweepOptions& opts, std::ostream& log);
