@@ -13,6 +13,30 @@
 
 namespace shadetwin {
 
+namespace {
+// The emulated kernels' loop: TBB over blocks of 8 pixels (row-major; tail lanes repeat the last
+// pixel) in the compute stage's denormal mode; kernel(block) gives the 8 lanes' coefficients.
+template <class Kernel>
+VisibilityImage perPixelBlocks(uint32_t width, uint32_t height, const emu::DeviceProfile& dev, Kernel kernel) {
+  VisibilityImage out;
+  out.width = width, out.height = height;
+  const size_t n = size_t(width) * height;
+  out.coeffs.assign(n * 16, 0.0f);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + 7) / 8, 64), [&](const tbb::blocked_range<size_t>& r) {
+    emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
+    for (size_t b = r.begin(); b != r.end(); ++b) {
+      const shade::x8::Sh16 c = kernel(b, n);
+      const shade::V4<emu::F32<8>> q[4] = {c.a, c.b, c.c, c.d};
+      for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
+        float* o = &out.coeffs[(b * 8 + size_t(l)) * 16];
+        for (int j = 0; j < 4; ++j) o[4 * j] = q[j].x[l], o[4 * j + 1] = q[j].y[l], o[4 * j + 2] = q[j].z[l], o[4 * j + 3] = q[j].w[l];
+      }
+    }
+  });
+  return out;
+}
+}  // namespace
+
 emu::Texture shadowMapArray(const ShadowMaps& maps) {
   const uint32_t S = maps.size, K = uint32_t(maps.maps.size());
   if (K == 0 || S == 0) throw std::invalid_argument("visibility: no shadow maps");
@@ -23,34 +47,19 @@ emu::Texture shadowMapArray(const ShadowMaps& maps) {
 
 VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v,
                                  const emu::DeviceProfile& dev) {
-  using F8 = emu::F32<8>;
-  using V3x = shade::V3<F8>;
-  VisibilityImage out;
-  out.width = g.width, out.height = g.height;
-  const size_t n = size_t(g.width) * g.height;
-  out.coeffs.assign(n * 16, 0.0f);
+  using V3x = shade::V3<emu::F32<8>>;
   const shade::Sampler2D mapS = environmentSampler(maps, dev, false), dataS = environmentSampler(*v.data, dev, false);
   const shade::x8::VisSettings s{uint32_t(maps.layers()), maps.width(), v.settings.fitCosine ? shade::x8::kVisFitVCos : shade::x8::kVisFitV,
                                  v.biasConst, v.biasSlope};
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + 7) / 8, 64), [&](const tbb::blocked_range<size_t>& r) {
-    emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
-    for (size_t b = r.begin(); b != r.end(); ++b) {
-      V3x p, nrm;
-      for (int l = 0; l < 8; ++l) {
-        const size_t i = std::min(b * 8 + size_t(l), n - 1);  // tail lanes repeat the last pixel
-        const float* t = g.texels.data() + i * kGbufFloats;
-        p.x.set(l, t[0]), p.y.set(l, t[1]), p.z.set(l, t[2]);
-        nrm.x.set(l, t[4]), nrm.y.set(l, t[5]), nrm.z.set(l, t[6]);
-      }
-      const shade::x8::Sh16 c = shade::x8::visFit(mapS, dataS, s, p, nrm);
-      const shade::V4<F8> q[4] = {c.a, c.b, c.c, c.d};
-      for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
-        float* o = &out.coeffs[(b * 8 + size_t(l)) * 16];
-        for (int j = 0; j < 4; ++j) o[4 * j] = q[j].x[l], o[4 * j + 1] = q[j].y[l], o[4 * j + 2] = q[j].z[l], o[4 * j + 3] = q[j].w[l];
-      }
+  return perPixelBlocks(g.width, g.height, dev, [&](size_t b, size_t n) {
+    V3x p, nrm;
+    for (int l = 0; l < 8; ++l) {
+      const float* t = g.texels.data() + std::min(b * 8 + size_t(l), n - 1) * kGbufFloats;
+      p.x.set(l, t[0]), p.y.set(l, t[1]), p.z.set(l, t[2]);
+      nrm.x.set(l, t[4]), nrm.y.set(l, t[5]), nrm.z.set(l, t[6]);
     }
+    return shade::x8::visFit(mapS, dataS, s, p, nrm);
   });
-  return out;
 }
 
 emu::Texture visibilityCoeffTexture(const VisibilityImage& in) {
@@ -77,29 +86,16 @@ VisibilityImage visibilityFilterEmu(const GBuffer& g, const VisibilityImage& in,
   using I8 = emu::I32<8>;
   const emu::Texture ct = visibilityCoeffTexture(in), gt = gbufferPositionNormalTexture(g);
   const shade::Sampler2D cs = environmentSampler(ct, dev, false), gs = environmentSampler(gt, dev, false);
-  VisibilityImage out;
-  out.width = in.width, out.height = in.height;
-  const size_t n = size_t(in.width) * in.height;
-  out.coeffs.assign(n * 16, 0.0f);
   const uint32_t mode = v.settings.filterEdgeAware ? shade::x8::kVisFilterEdge : shade::x8::kVisFilterBox;
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + 7) / 8, 64), [&](const tbb::blocked_range<size_t>& r) {
-    emu::DenormalScope mode_(dev.denormCompute == emu::DenormMode::Flush);
-    for (size_t b = r.begin(); b != r.end(); ++b) {
-      I8 x, y;
-      for (int l = 0; l < 8; ++l) {
-        const size_t i = std::min(b * 8 + size_t(l), n - 1);  // tail lanes repeat the last pixel
-        x.set(l, int32_t(i % in.width)), y.set(l, int32_t(i / in.width));
-      }
-      const shade::x8::Sh16 c = shade::x8::visFilter(cs, gs, x, y, int(in.width), int(in.height),
-                                                     int(v.settings.filterRadius), mode, v.planeTolerance);
-      const shade::V4<emu::F32<8>> q[4] = {c.a, c.b, c.c, c.d};
-      for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
-        float* o = &out.coeffs[(b * 8 + size_t(l)) * 16];
-        for (int j = 0; j < 4; ++j) o[4 * j] = q[j].x[l], o[4 * j + 1] = q[j].y[l], o[4 * j + 2] = q[j].z[l], o[4 * j + 3] = q[j].w[l];
-      }
+  return perPixelBlocks(in.width, in.height, dev, [&](size_t b, size_t n) {
+    I8 x, y;
+    for (int l = 0; l < 8; ++l) {
+      const size_t i = std::min(b * 8 + size_t(l), n - 1);
+      x.set(l, int32_t(i % in.width)), y.set(l, int32_t(i / in.width));
     }
+    return shade::x8::visFilter(cs, gs, x, y, int(in.width), int(in.height), int(v.settings.filterRadius), mode,
+                                v.planeTolerance);
   });
-  return out;
 }
 
 VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const VisibilitySetup& v, const emu::DeviceProfile& dev,

@@ -21,6 +21,14 @@ struct FitPush {
   float biasConst, biasSlope;
 };
 static_assert(sizeof(FitPush) == 24, "FitPush must match the push block of visibility_fit.comp");
+// The 16 coefficients per pixel a kernel wrote into `out`.
+VisibilityImage readBack(vk::Buffer& out, uint32_t width, uint32_t height) {
+  VisibilityImage r;
+  r.width = width, r.height = height;
+  r.coeffs.resize(size_t(width) * height * 16);
+  std::memcpy(r.coeffs.data(), out.as<float>(), r.coeffs.size() * 4);
+  return r;
+}
 }  // namespace
 
 VisibilityImage visibilityFitVulkan(vk::Context& ctx, const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v) {
@@ -39,11 +47,7 @@ VisibilityImage visibilityFitVulkan(vk::Context& ctx, const GBuffer& g, const em
                             {kLayout[2], VK_NULL_HANDLE, data->view(), sampler.handle()},
                             {kLayout[3], out.handle()}};
   fit.run(b, &push, uint32_t(n));
-  VisibilityImage r;
-  r.width = g.width, r.height = g.height;
-  r.coeffs.resize(n * 16);
-  std::memcpy(r.coeffs.data(), out.as<float>(), n * 64);
-  return r;
+  return readBack(out, g.width, g.height);
 }
 
 VisibilityImage visibilityFilterVulkan(vk::Context& ctx, const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v) {
@@ -63,11 +67,7 @@ VisibilityImage visibilityFilterVulkan(vk::Context& ctx, const GBuffer& g, const
                             {kLayout[1], VK_NULL_HANDLE, gImg.view(), sampler.handle()},
                             {kLayout[2], out.handle()}};
   filter.run(b, &push, uint32_t(n));
-  VisibilityImage r;
-  r.width = in.width, r.height = in.height;
-  r.coeffs.resize(n * 16);
-  std::memcpy(r.coeffs.data(), out.as<float>(), n * 64);
-  return r;
+  return readBack(out, in.width, in.height);
 }
 
 VisibilityImage visibilityVulkan(vk::Context& ctx, const Scene& scene, const GBuffer& g, const VisibilitySetup& v,
