@@ -13,6 +13,8 @@
 
 namespace shadetwin {
 
+struct VisibilityImage;  // passes/visibility.h
+
 /// The scene's geometry and per-object data in device buffers.
 struct SceneGpu {
   SceneGpu(vk::Context& ctx, const Scene& scene);
@@ -69,7 +71,7 @@ class ShadePassVk {
   ShadePassVk(vk::Context& ctx, const Scene& scene, const ShadeInputs& in);
   ~ShadePassVk();
   /// vis: the frame's SH visibility fit of `g` (fis with a "visibility" block), or nullptr.
-  std::vector<float> run(const GBuffer& g, const struct VisibilityImage* vis = nullptr);
+  std::vector<float> run(const GBuffer& g, const VisibilityImage* vis = nullptr);
   double lastMs = 0;
 
  private:

@@ -14,6 +14,8 @@
 
 namespace shadetwin {
 
+struct VisibilityImage;  // passes/visibility.h
+
 /// Camera basis for primary rays (shade/shade_mirror.h cameraRay), from the scene on the host.
 struct CameraRays {
   float eye[3], fwd[3], right[3], down[3];
@@ -26,10 +28,10 @@ CameraRays cameraRays(const Scene& scene);
 /// vis: the frame's SH visibility fit of this G-buffer (passes/visibility.h) for fis with a
 /// "visibility" block; nullptr shades without visibility.
 std::vector<float> shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
-                            const struct VisibilityImage* vis = nullptr);
+                            const VisibilityImage* vis = nullptr);
 /// Same, into `out` (resized to 4 floats per pixel, storage reused).
 void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
-              std::vector<float>& out, const struct VisibilityImage* vis = nullptr);
+              std::vector<float>& out, const VisibilityImage* vis = nullptr);
 
 /// Emulated sampler of an environment texture: trilinear, clamp in v, repeat (equirectangular map) or
 /// clamp (paraboloid atlas) in u; the emulator's side of environmentSamplerInfo (passes/passes_vk.h).
