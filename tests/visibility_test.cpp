@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <cstring>
 #include <numbers>
 #include <random>
@@ -275,6 +277,74 @@ TEST(Visibility, FilterAveragesTheSurfaceAndStopsAtEdges) {
       const auto c = flat(sc::visFilter(cs, gs, int32_t(x), int32_t(y), 12, 8, 1, sc::kVisFilterEdge, 0.05f));
       EXPECT_EQ(0, std::memcmp(c.data(), &edge.coeffs[(size_t(y) * 12 + x) * 16], 64)) << x << "," << y;
     }
+}
+
+// A sphere of radius 0.3 resting on a plane, written next to the build (relative asset paths).
+shadetwin::Scene sphereOnPlane() {
+  const auto dir = std::filesystem::path(SHADETWIN_SOURCE_DIR) / "build-test-scenes";
+  std::filesystem::create_directories(dir);
+  const auto p = dir / "sphere_on_plane.json";
+  std::ofstream(p) << R"({"image": {"width": 192, "height": 192},
+    "camera": {"eye": [0, 1.6, 1.6], "target": [0, 0, 0], "fov": 45, "near": 0.5, "far": 6},
+    "environment": {"file": "../assets/hdri/forest.exr"},
+    "objects": [{"mesh": "plane", "scale": 1.0}, {"mesh": "sphere", "fit": 0.6}]})";
+  return shadetwin::loadScene(p.string());
+}
+
+TEST(Visibility, BiasAvoidsAcneAndKeepsContactShadows) {
+  // 64 uniform directions, 1024^2 maps, the default bias (1 texel + 1.5 texels x tan theta). Acne: no
+  // map may shadow an open pixel of the plane (farther than 0.8 from the sphere's axis: outside the
+  // shadow the sphere (radius 0.3, centre 0.3 up) casts from 45 degrees or higher, whose far edge is
+  // at 0.3 / tan + 0.3 / sin = 0.72) for a direction at least 45 degrees up, nor a sphere pixel for a
+  // direction above the horizon and at least 25 degrees above its tangent plane (a convex surface
+  // does not shadow itself there). Peter-panning: the plane right around the contact point (within
+  // 0.22 of the axis, inside the disk the sphere shades from above) is shadowed from the direction
+  // nearest straight up (64 uniform directions: about 10 degrees off; the disk moves 0.05).
+  const shadetwin::Scene scene = sphereOnPlane();
+  const float black[4] = {0, 0, 0, 1};
+  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, 1, 1, black);
+  shadetwin::VisibilitySettings vs;
+  vs.maps = 64;
+  vs.size = 1024;
+  vs.fitCosine = false;
+  const auto v = shadetwin::visibilitySetup(scene, env, vs);
+  const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev());
+  const emu::Texture maps = shadetwin::shadowMapArray(shadetwin::shadowEmu(scene, v.directions, vs.size, dev()));
+  namespace sc = shadetwin::shade::scalar;
+  const auto mapS = shadetwin::environmentSampler(maps, dev(), false), dataS = shadetwin::environmentSampler(*v.data, dev(), false);
+  const sc::VisSettings s{maps.layers(), maps.width(), sc::kVisFitV, v.biasConst, v.biasSlope};
+  size_t openTests = 0, acne = 0, sphereTests = 0, selfShadow = 0, contact = 0, contactShadowed = 0;
+  for (uint32_t y = 0; y < g.height; ++y)
+    for (uint32_t x = 0; x < g.width; ++x) {
+      const float* t = g.at(x, y);
+      if (t[3] == 0.0f) continue;
+      const shadetwin::shade::V3<float> p(t[0], t[1], t[2]);
+      const float nl = std::sqrt(t[4] * t[4] + t[5] * t[5] + t[6] * t[6]);
+      const shadetwin::shade::V3<float> n(t[4] / nl, t[5] / nl, t[6] / nl);
+      const double r = std::hypot(double(t[0]), double(t[2]));
+      const bool plane = std::fabs(t[1]) < 1e-4f && n.y > 0.999f;
+      for (uint32_t k = 0; k < vs.maps; ++k) {
+        const Vec3& w = v.directions[k];
+        const double c = n.x * w[0] + n.y * w[1] + n.z * w[2];
+        const bool lit = sc::visResidual(mapS, dataS, s, int(k), p, n) == 0.0f;
+        if (plane && r > 0.8 && c > std::sin(45 * std::numbers::pi / 180)) ++openTests, acne += !lit;
+        if (!plane && w[1] > 0.0f && c > std::sin(25 * std::numbers::pi / 180)) ++sphereTests, selfShadow += !lit;
+      }
+      if (plane && r < 0.22) {
+        ++contact;
+        // The direction of the 64 nearest +y.
+        size_t up = 0;
+        for (size_t k = 1; k < v.directions.size(); ++k)
+          if (v.directions[k][1] > v.directions[up][1]) up = k;
+        contactShadowed += sc::visResidual(mapS, dataS, s, int(up), p, n) != 0.0f;
+      }
+    }
+  ASSERT_GT(openTests, 1000u);
+  ASSERT_GT(sphereTests, 1000u);
+  EXPECT_EQ(acne, 0u) << acne << " of " << openTests;
+  EXPECT_EQ(selfShadow, 0u) << selfShadow << " of " << sphereTests;
+  ASSERT_GT(contact, 0u);
+  EXPECT_EQ(contactShadowed, contact);
 }
 
 }  // namespace
