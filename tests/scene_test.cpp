@@ -105,6 +105,23 @@ TEST(Scene, MisBlock) {
   EXPECT_NE(errorOf(p).find("kdtree-mis"), std::string::npos) << errorOf(p);  // the message lists the techniques
 }
 
+TEST(Scene, RotateAboutOwnAxis) {
+  // model: scale 2, translate (3, 1, -2). A 90-degree turn maps the object's +x to world -z (right-handed
+  // about +y), keeps its origin and up axis; 360 degrees is the identity up to rounding.
+  shadetwin::Mat4 m{};
+  m[0] = 2, m[5] = 2, m[10] = 2, m[12] = 3, m[13] = 1, m[14] = -2, m[15] = 1;
+  const shadetwin::Mat4 r = shadetwin::rotateAboutOwnAxis(m, 90);
+  EXPECT_NEAR(r[0], 0, 1e-6);
+  EXPECT_NEAR(r[2], -2, 1e-6);  // column 0 (object x) = world -z, length 2
+  EXPECT_NEAR(r[8], 2, 1e-6);   // column 2 (object z) = world +x
+  EXPECT_EQ(r[5], 2.0f);
+  EXPECT_EQ(r[12], 3.0f);
+  EXPECT_EQ(r[13], 1.0f);
+  EXPECT_EQ(r[14], -2.0f);
+  const shadetwin::Mat4 full = shadetwin::rotateAboutOwnAxis(m, 360);
+  for (size_t i = 0; i < 16; ++i) EXPECT_NEAR(full[i], m[i], 1e-5) << i;
+}
+
 TEST(Scene, VisibilityBlock) {
   const shadetwin::Scene b = shadetwin::loadScene(src("scenes/bunny.json"));  // the default scene uses it
   EXPECT_EQ(b.visMaps, 16u);

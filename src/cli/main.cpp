@@ -75,6 +75,9 @@ int main(int argc, char** argv) {
   render->add_option("--frames", ro.frames, "frames to render (OUT_0000.exr, ...); technique inputs are rebuilt only when the environment changes")
       ->check(CLI::Range(1, 100000));
   render->add_option("--env-rotate", ro.envRotate, "degrees the environment turns about +y per frame (whole texel columns)");
+  render->add_option("--object-rotate", ro.objectRotate,
+                     "degrees the first object turns about its vertical axis per frame: the G-buffer, shadow maps and "
+                     "visibility fit are redone every frame");
   render->add_option("--blocks", ro.blocks, "kd-tree blocks of kdtree-mis / alias-mis (default: the scene's mis.blocks, 6144)")
       ->check(CLI::Range(1, 1 << 20));
   shadetwin::ReferenceCommandOptions refo;

@@ -85,8 +85,12 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   const bool progressive = usesMisPass(scene.technique);
   std::vector<double> accum;
   uint32_t accumFrames = 0;
+  const Mat4 model0 = scene.objects.empty() ? Mat4{} : scene.objects[0].model;
+  const bool moving = opts.objectRotate != 0 && !scene.objects.empty();
   for (uint32_t f = 0; f < opts.frames; ++f) {
     scene.misFrame = f;
+    if (moving) scene.objects[0].model = rotateAboutOwnAxis(model0, opts.objectRotate * f);
+    const bool drawGbuffer = f == 0 || moving;
     std::ostringstream passes;
     passes << std::fixed << std::setprecision(1);
     const double degrees = opts.envRotate * f;
@@ -98,16 +102,21 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     if (opts.device == "emu") {
       GbufferStats gs;
       t0 = Clock::now();
-      if (f == 0) g = gbufferEmu(scene, dev, &gs);
+      if (drawGbuffer) g = gbufferEmu(scene, dev, &gs);
       const double tGbuf = msSince(t0);
       const ShadeInputs& in = cache.emu(scene, *env.texture, dev);
       VisibilityTimes vt;
       std::unique_ptr<VisibilityImage> vis;
-      if (in.visibility) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *in.visibility, dev, &vt));
+      // A moving object changes the scene bounds: the maps' matrices are set up again (directions unchanged).
+      std::unique_ptr<VisibilitySetup> movedSetup;
+      if (in.visibility && moving)
+        movedSetup = std::make_unique<VisibilitySetup>(visibilitySetup(scene, *env.texture, visibilitySettings(scene)));
+      const VisibilitySetup* vsetup = movedSetup ? movedSetup.get() : in.visibility.get();
+      if (vsetup) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *vsetup, dev, &vt));
       t0 = Clock::now();
       image = shadeEmu(scene, g, in, dev, vis.get());
       const double tShade = msSince(t0);
-      if (vis) visibilityLines(passes, "emu", *in.visibility, vt);
+      if (vis) visibilityLines(passes, "emu", *vsetup, vt);
       if (rotated.texture)
         passes << "  environment turned      " << std::setw(8) << tRotate << " ms  (" << degrees << " degrees = "
                << environmentShift(env0.width, degrees) << " columns, + MIP chain)\n";
@@ -126,7 +135,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
                              << std::setprecision(1);
         passes << ")\n";
       }
-      if (f == 0)
+      if (drawGbuffer)
         passes << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
                << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
                << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
@@ -136,22 +145,24 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       passes << ")    " << std::setw(8) << tShade << " ms\n";
     } else {
       t0 = Clock::now();
-      if (f == 0) {
-        ctx = std::make_unique<vk::Context>();
-        gpass = std::make_unique<GbufferPassVk>(*ctx, scene);
-      }
+      if (f == 0) ctx = std::make_unique<vk::Context>();
+      if (drawGbuffer) gpass = std::make_unique<GbufferPassVk>(*ctx, scene);  // the scene's object buffer, as moved
       const ShadeInputs& in = cache.vulkan(*ctx, scene, *env.texture);
       if (cache.lastRebuilt() || rotated.texture) spass = std::make_unique<ShadePassVk>(*ctx, scene, in);
       const double tSetup = msSince(t0);
-      if (f == 0) g = gpass->run();
+      if (drawGbuffer) g = gpass->run();
       VisibilityTimes vt;
       std::unique_ptr<VisibilityImage> vis;
-      if (in.visibility) vis = std::make_unique<VisibilityImage>(visibilityVulkan(*ctx, scene, g, *in.visibility, &vt));
+      std::unique_ptr<VisibilitySetup> movedSetup;
+      if (in.visibility && moving)
+        movedSetup = std::make_unique<VisibilitySetup>(visibilitySetup(scene, *env.texture, visibilitySettings(scene)));
+      const VisibilitySetup* vsetup = movedSetup ? movedSetup.get() : in.visibility.get();
+      if (vsetup) vis = std::make_unique<VisibilityImage>(visibilityVulkan(*ctx, scene, g, *vsetup, &vt));
       image = spass->run(g, vis.get());
-      if (vis) visibilityLines(passes, "vulkan", *in.visibility, vt);
+      if (vis) visibilityLines(passes, "vulkan", *vsetup, vt);
       passes << "  Vulkan set-up (" << ctx->deviceName() << ")  " << std::setw(8) << tSetup << " ms"
              << (cache.lastRebuilt() ? "" : "  (technique inputs reused)") << "\n";
-      if (f == 0) passes << "  G-buffer (vulkan)        " << std::setw(8) << gpass->lastMs << " ms  (submit to read-back)\n";
+      if (drawGbuffer) passes << "  G-buffer (vulkan)        " << std::setw(8) << gpass->lastMs << " ms  (submit to read-back)\n";
       passes << "  shading (vulkan, " << scene.technique << ") " << std::setw(8) << spass->lastMs << " ms  (submit to read-back)\n";
     }
     // Passes the technique does not use are not run.

@@ -21,6 +21,7 @@ struct RenderOptions {
   uint32_t frames = 1;               // frames to render (OUT_NNNN.exr when more than one)
   double envRotate = 0;              // degrees the environment turns about +y per frame
   uint32_t blocks = 0;               // kd-tree blocks of the *-mis techniques (0: the scene's mis.blocks)
+  double objectRotate = 0;           // degrees the first object turns about its vertical axis per frame
 };
 
 int renderCommand(const RenderOptions& opts, std::ostream& log);

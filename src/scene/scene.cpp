@@ -11,6 +11,22 @@
 
 namespace shadetwin {
 
+Mat4 rotateAboutOwnAxis(const Mat4& m, double degrees) {
+  const double a = degrees * 3.14159265358979323846 / 180.0, c = std::cos(a), sn = std::sin(a);
+  const double ox = m[12], oz = m[14];  // the object's origin in world space (column 3)
+  // R = [c 0 s; 0 1 0; -s 0 c] about (ox, *, oz): rows of the 3x3 part and the translation.
+  Mat4 r{};
+  for (int col = 0; col < 4; ++col) {
+    const double x = m[size_t(4 * col)], y = m[size_t(4 * col + 1)], z = m[size_t(4 * col + 2)], w = m[size_t(4 * col + 3)];
+    const double px = x - ox * w, pz = z - oz * w;  // T(-o), per column (w = 0 for directions, 1 for the origin)
+    r[size_t(4 * col)] = float(c * px + sn * pz + ox * w);
+    r[size_t(4 * col + 1)] = float(y);
+    r[size_t(4 * col + 2)] = float(-sn * px + c * pz + oz * w);
+    r[size_t(4 * col + 3)] = float(w);
+  }
+  return r;
+}
+
 namespace fs = std::filesystem;
 using nlohmann::json;
 

@@ -51,6 +51,10 @@ struct Object {
   Mat4 model{};  // object -> world
 };
 
+/// `model` turned by `degrees` about the vertical axis through its own origin (the object's position):
+/// world = T(o) R_y(degrees) T(-o) model, in double, rounded once. Right-handed about +y.
+Mat4 rotateAboutOwnAxis(const Mat4& model, double degrees);
+
 struct Camera {
   Vec3 eye{0, 0, 3}, target{0, 0, 0}, up{0, 1, 0};
   float fovY = 40.0f;  // degrees
