@@ -4,6 +4,8 @@
 // sampler (kd-tree, alias, inversion) and the balance and power heuristics.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -118,13 +120,16 @@ TEST(EnvMis, EstimatorIsUnbiased) {
       auto es = shadetwin::toEnvSampling<sc::EnvSampling>(U);
       if (method == kWrongAlpha)  // negative control: sampling with another alpha than the pdf's
         es.alpha *= 0.05f, es.log2Span = float(std::log2(1.0 + U.count / double(es.alpha)));
+      const shadetwin::shade::V4<float> z4(0.0f, 0.0f, 0.0f, 0.0f);
+      const sc::Sh16 noVis{z4, z4, z4, z4};
       for (uint32_t h : {sc::kMisBalance, sc::kMisPower}) {
         const int frames = 3000;
         double s = 0, s2 = 0;
         for (int f = 0; f < frames; ++f) {
           const sc::MisSettings ms{h, 4u, uint32_t(f), 7u};
           const float c =
-              sc::shadeEnvMis(envS, table, texels, es, ms, 1.0f, 123u, g0, g1, g2, eye, eye, diffuse, specular, m.b).y;
+              sc::shadeEnvMis(envS, table, texels, es, ms, 1.0f, 123u, g0, g1, g2, eye, eye, diffuse, specular, m.b,
+                              sc::kFisVisNone, noVis).y;
           s += c, s2 += double(c) * c;
         }
         const double mean = s / frames, sd = std::sqrt(std::max(0.0, s2 / frames - mean * mean) / frames);
@@ -141,3 +146,34 @@ TEST(EnvMis, EstimatorIsUnbiased) {
 }
 
 }  // namespace
+
+TEST(EnvMis, VisibilityWeightsBothStrategies) {
+  // SH visibility (issue 16) in the MIS estimator: a fit that is 1 everywhere (the V fit's prior,
+  // sqrt(4 pi) Y00) reproduces the unshadowed estimate bit for bit; a fit of 0 makes every sample's
+  // contribution 0; the V max(0, n.w) fit at its prior (the clamped cosine's SH at n) is V = 1 too.
+  const emu::Texture env = smallEnv();
+  const auto& dev = emu::lavapipeProfile();
+  const auto envS = shadetwin::environmentSampler(env, dev, true);
+  const auto T = shadetwin::envSamplingTables(env, sc::kEnvInversion, 64);
+  const auto table = shadetwin::environmentSampler(*T.table, dev, false), texels = shadetwin::environmentSampler(*T.texels, dev, false);
+  const auto es = shadetwin::toEnvSampling<sc::EnvSampling>(T.uniforms);
+  const sc::Float4 g0(0.0f, 0.0f, 0.0f, 1.0f), g1(0.0f, 0.6f, 0.8f, 0.0f), g2(1.0f, 0.0f, 0.0f, 0.0f);
+  const sc::Float3 eye(0.5f, 1.0f, 2.0f), diffuse(0.2f, 0.2f, 0.2f), specular(0.6f, 0.6f, 0.6f);
+  const sc::BrdfParams b = sc::brdfParams(sc::kBrdfGgx, 1.0f, 0.3f, 0.3f);
+  const sc::MisSettings ms{sc::kMisPower, 8u, 0u, 3u};
+  const shadetwin::shade::V4<float> z4(0.0f, 0.0f, 0.0f, 0.0f);
+  const sc::Sh16 zero{z4, z4, z4, z4}, one{shadetwin::shade::V4<float>(3.54490781f, 0.0f, 0.0f, 0.0f), z4, z4, z4};
+  auto shade = [&](uint32_t mode, sc::Sh16 v) {
+    return sc::shadeEnvMis(envS, table, texels, es, ms, 1.0f, 77u, g0, g1, g2, eye, eye, diffuse, specular, b, mode, v);
+  };
+  const sc::Float4 plain = shade(sc::kFisVisNone, zero), open = shade(sc::kFisVisV, one), dark = shade(sc::kFisVisV, zero);
+  EXPECT_GT(plain.y, 0.0f);
+  EXPECT_EQ(0, std::memcmp(&plain, &open, sizeof plain));
+  EXPECT_EQ(dark.x, 0.0f);
+  EXPECT_EQ(dark.y, 0.0f);
+  // The V max(0, n.w) fit at its prior t(n): V = 1 up to the prior's band-3-free form (within 1%).
+  const sc::VisSettings vs{1u, 16u, sc::kVisFitVCos, 0.0f, 0.0f};
+  const sc::Sh16 t = sc::visPrior(vs, sc::exNormalize(sc::Float3(g1.x, g1.y, g1.z)));
+  const sc::Float4 prior = shade(sc::kFisVisCos, t);
+  EXPECT_NEAR(prior.y, plain.y, 0.01f * plain.y);
+}

@@ -17,11 +17,10 @@ ShadeInputs shadeInputsWith(const Scene& scene, const emu::Texture& env, Atlas a
   if (usesFisPass(scene.technique)) {
     in.atlasMs = timeMs([&] { in.atlas = std::make_shared<emu::Texture>(atlas()); });
     in.shMs = timeMs([&] { in.sh = sh(); });
-    if (scene.visMaps) {
-      in.visibility = std::make_shared<VisibilitySetup>(visibilitySetup(scene, env, visibilitySettings(scene)));
-      in.visLighting = visibilityLighting(in.sh);
-    }
+    if (scene.visMaps) in.visLighting = visibilityLighting(in.sh);
   }
+  if (scene.visMaps && (usesFisPass(scene.technique) || usesMisPass(scene.technique)))
+    in.visibility = std::make_shared<VisibilitySetup>(visibilitySetup(scene, env, visibilitySettings(scene)));
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
   if (usesMisPass(scene.technique))
     in.envTables = std::make_shared<EnvSamplingTables>(envSamplingTables(env, envMethodOf(scene.technique), scene.envBlocks));

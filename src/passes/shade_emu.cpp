@@ -165,6 +165,14 @@ void shadeEnvEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
   });
 }
 
+// kFisVis* for a pass with `vis` (the frame's fit of g) or without it.
+uint32_t visModeOf(const GBuffer& g, const ShadeInputs& in, const VisibilityImage* vis) {
+  if (!vis || !in.visibility) return shade::x8::kFisVisNone;
+  if (vis->width != g.width || vis->height != g.height)
+    throw std::invalid_argument("shading pass: the visibility fit is not of this G-buffer");
+  return in.visibility->settings.fitCosine ? shade::x8::kFisVisCos : shade::x8::kFisVisV;
+}
+
 // The lanes' SH visibility coefficients (zero without visibility: the kernel does not read them).
 shade::x8::Sh16 laneVisibility(const PixelBlock& p, const VisibilityImage* vis) {
   float c[16][8] = {};
@@ -192,10 +200,7 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
   const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);
   const std::vector<MaterialGpu> mats = materialRecords(scene, true);
   const bool useVis = vis && in.visibility;
-  if (useVis && (vis->width != g.width || vis->height != g.height))
-    throw std::invalid_argument("shading pass: the visibility fit is not of this G-buffer");
-  const uint32_t visMode = !useVis ? shade::x8::kFisVisNone
-                                   : in.visibility->settings.fitCosine ? shade::x8::kFisVisCos : shade::x8::kFisVisV;
+  const uint32_t visMode = visModeOf(g, in, vis);
   auto sh16 = [&](const float* c) {
     return shade::x8::Sh16{V4x(F8(c[0]), F8(c[1]), F8(c[2]), F8(c[3])), V4x(F8(c[4]), F8(c[5]), F8(c[6]), F8(c[7])),
                            V4x(F8(c[8]), F8(c[9]), F8(c[10]), F8(c[11])), V4x(F8(c[12]), F8(c[13]), F8(c[14]), F8(c[15]))};
@@ -210,20 +215,22 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
 }
 // Techniques *-mis: shade_env_mis.comp's shadeEnvMis over the environment and its sampler's tables.
 void shadeMisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
-                 std::vector<float>& out) {
+                 std::vector<float>& out, const VisibilityImage* vis) {
   const shade::Sampler2D env = environmentSampler(*in.environment, dev, true);
   const shade::Sampler2D table = environmentSampler(*in.envTables->table, dev, false);
   const shade::Sampler2D texels = environmentSampler(*in.envTables->texels, dev, false);
   const EnvSamplingUniforms& u = in.envTables->uniforms;
   const auto es = toEnvSampling<shade::x8::EnvSampling>(u);
   const shade::x8::MisSettings ms{scene.misHeuristic, scene.misSamples, scene.misFrame, scene.misSeed};
+  const bool useVis = vis && in.visibility;
+  const uint32_t visMode = visModeOf(g, in, vis);
   const F8 intensity(scene.environmentIntensity);
   const shade::Sampler2D maps = materialMapSampler(*in.maps, dev);
   const std::vector<MaterialGpu> mats = materialRecords(scene, true);
   shadePixelBlocks(scene, g, dev, 4, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
     const auto m = surface(p, mats, maps);
     return shade::x8::shadeEnvMis(env, table, texels, es, ms, intensity, p.pixel, p.g0, p.g1, p.g2, p.eye, p.ray, m.diffuse,
-                                  m.specular, m.brdf);
+                                  m.specular, m.brdf, visMode, laneVisibility(p, useVis ? vis : nullptr));
   });
 }
 }  // namespace
@@ -231,7 +238,7 @@ void shadeMisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
 void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
               std::vector<float>& out, const VisibilityImage* vis) {
   if (usesFisPass(scene.technique)) return shadeFisEmu(scene, g, in, dev, out, vis);
-  if (usesMisPass(scene.technique)) return shadeMisEmu(scene, g, in, dev, out);
+  if (usesMisPass(scene.technique)) return shadeMisEmu(scene, g, in, dev, out, vis);
   if (scene.technique == "env") return shadeEnvEmu(scene, g, in, dev, out);
   const emu::Texture& env = *in.environment;
   const shade::Sampler2D envS = environmentSampler(env, dev, true);

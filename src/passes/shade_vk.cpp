@@ -156,8 +156,13 @@ std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis
   // fis with visibility: binding 4 is the E/pi coefficients, the lighting SH and the pixels' fit.
   std::unique_ptr<vk::Buffer> visExtra;
   const bool useVis = m.fis && vis && m.visibility;
+  const bool misVis = m.info.bindings == 8 && vis && m.visibility;
+  const uint32_t visMode = !(useVis || misVis) ? shade::scalar::kFisVisNone
+                           : m.visibility->settings.fitCosine  ? shade::scalar::kFisVisCos
+                                                               : shade::scalar::kFisVisV;
+  if ((useVis || misVis) && (vis->width != g.width || vis->height != g.height))
+    throw vk::Error("shading pass: the visibility fit is not of this G-buffer");
   if (useVis) {
-    if (vis->width != g.width || vis->height != g.height) throw vk::Error("shading pass: the visibility fit is not of this G-buffer");
     visExtra = std::make_unique<vk::Buffer>(m.ctx, (21 + 4 * n) * 16);
     float* d = visExtra->as<float>();
     std::memcpy(d, m.extra.data(), 9 * 16);
@@ -168,7 +173,18 @@ std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis
   if (m.info.bindings == 8) {  // the MIS kernel: its settings, the frame's included, in binding 4
     if (!m.envTables) throw vk::Error("shading pass: technique " + m.scene.technique + " needs its environment sampler's tables");
     const MisSettingsGpu st{m.envTables->uniforms, m.scene.misHeuristic, m.scene.misSamples, m.scene.misFrame, m.scene.misSeed};
-    std::memcpy(m.extra.data(), &st, sizeof st);
+    // The settings, the visibility mode (uvec4 at 48) and, with visibility, the pixels' fit (from 64).
+    const uint32_t mode4[4] = {visMode, 0, 0, 0};
+    if (misVis) {
+      visExtra = std::make_unique<vk::Buffer>(m.ctx, 64 + n * 64);
+      std::memcpy(visExtra->data(), &st, sizeof st);
+      std::memcpy(visExtra->as<uint8_t>() + 48, mode4, 16);
+      std::memcpy(visExtra->as<uint8_t>() + 64, vis->coeffs.data(), n * 64);
+      b[4] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, visExtra->handle()};
+    } else {
+      std::memcpy(m.extra.data(), &st, sizeof st);
+      std::memcpy(m.extra.as<uint8_t>() + 48, mode4, 16);
+    }
   }
   ShadePush push{};
   std::memcpy(push.eye, cam.eye, 12);
@@ -187,8 +203,7 @@ std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis
     push.levelConstant = fisLevelConstant(m.scene);
     push.levelBias = m.scene.fisLevelBias;
     push.mode = fisMode(m.scene);
-    push.visMode = !useVis ? shade::scalar::kFisVisNone
-                           : m.visibility->settings.fitCosine ? shade::scalar::kFisVisCos : shade::scalar::kFisVisV;
+    push.visMode = visMode;
   } else if (m.scene.technique == "env") {
     push.sampleCount = m.lightCount;
   }

@@ -265,8 +265,9 @@ Scene loadScene(const std::string& path) {
     const std::string fit = R.string(f, "visibility.fit", "vcos");
     if (fit != "vcos" && fit != "v") R.fail("visibility.fit", "unknown fit '" + fit + "' (expected vcos or v)");
     s.visFitCosine = fit == "vcos";
-    if (!usesFisPass(s.technique))
-      R.fail("visibility", "technique " + s.technique + " does not read visibility yet (fis, unfiltered and stochastic do)");
+    if (!usesFisPass(s.technique) && !usesMisPass(s.technique))
+      R.fail("visibility", "technique " + s.technique +
+                               " does not read visibility yet (fis, unfiltered, stochastic and the *-mis techniques do)");
   }
   if (j.contains("mis")) {
     const json& f = j["mis"];

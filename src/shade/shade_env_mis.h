@@ -88,8 +88,11 @@ struct MisSettings {
   uint seed;         // Philox key word 0
 };
 
+// visMode != kFisVisNone: both strategies' samples times the pixel's SH visibility in their
+// direction (shade/visibility.h visAt, issue 16).
 Float4 shadeEnvMis(Sampler2D env, Sampler2D table, Sampler2D texels, EnvSampling es, MisSettings ms, Float intensity, Uint pixel,
-                   Float4 g0, Float4 g1, Float4 g2, Float3 eye, Float3 ray, Float3 diffuse, Float3 specular, BrdfParams brdf) {
+                   Float4 g0, Float4 g1, Float4 g2, Float3 eye, Float3 ray, Float3 diffuse, Float3 specular, BrdfParams brdf,
+                   uint visMode, Sh16 vis) {
   Mask geometry = g0.w != 0.0f;
   PRECISE Float3 sum = Float3(0.0f, 0.0f, 0.0f);
   IF_ANY(geometry) {
@@ -102,6 +105,7 @@ Float4 shadeEnvMis(Sampler2D env, Sampler2D table, Sampler2D texels, EnvSampling
       Float3 wie = basisToLocal(F.basis, e.dir);
       Float we = misWeightOverPdf(ms.heuristic, Mask(true), e.pdf, misBrdfPdf(brdf, pd, F.wo, wie));
       Float3 ce = misIntegrand(env, F, brdf, diffuse, specular, e.dir, wie);
+      if (visMode != kFisVisNone) ce = ce * visAt(visMode, vis, F.basis.n, e.dir);
       sum = sum + ce * we;
       // BRDF strategy.
       Float4 ub = philoxUniform4(philox4x32(Philox4(pixel, Uint(i), Uint(1u), Uint(0u)), Uint(ms.seed), Uint(ms.frame)));
@@ -109,6 +113,7 @@ Float4 shadeEnvMis(Sampler2D env, Sampler2D table, Sampler2D texels, EnvSampling
       Float3 db = basisToWorld(F.basis, wib);
       Float wb = misWeightOverPdf(ms.heuristic, Mask(false), misBrdfPdf(brdf, pd, F.wo, wib), envPdf(table, texels, es, db));
       Float3 cb = misIntegrand(env, F, brdf, diffuse, specular, db, wib);
+      if (visMode != kFisVisNone) cb = cb * visAt(visMode, vis, F.basis.n, db);
       sum = sum + cb * wb;
     }
     PRECISE Float invN = exDiv(1.0f, Float(float(ms.sampleCount)));
