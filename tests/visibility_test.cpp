@@ -16,6 +16,7 @@
 #include "lanes/instantiate.h"
 #include "passes/shade.h"
 #include "passes/visibility.h"
+#include "reference/reference.h"
 #include "scene/scene.h"
 
 namespace {
@@ -345,6 +346,39 @@ TEST(Visibility, BiasAvoidsAcneAndKeepsContactShadows) {
   EXPECT_EQ(selfShadow, 0u) << selfShadow << " of " << sphereTests;
   ASSERT_GT(contact, 0u);
   EXPECT_EQ(contactShadowed, contact);
+}
+
+TEST(Visibility, EmbreeShFitOfAnOpenPixelIsTheClampedCosineProjection) {
+  // The per-pixel Embree fit (reference/reference.h, the SH-order baseline): for the open plane of the
+  // sphere scene (no occluder above a pixel far from the sphere) it is the projection of max(0, n.w),
+  // the prior t of the shared fit (pi Y00, 2 pi/3 Y1(n), pi/4 Y2(n), band 3 zero), up to the sphere's
+  // remaining ~0.26 sr low above the horizon (c0 0.878 vs 0.886) and the quadrature of 4096 stratified
+  // rays; near the sphere, c0 drops by more than 20%.
+  const shadetwin::Scene scene = sphereOnPlane();
+  const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev());
+  const std::vector<float> c = shadetwin::referenceVisibilitySh(scene, g.texels, g.width, g.height, 4096, true);
+  const auto yUp = shadetwin::sh16BasisDouble({0, 1, 0});
+  const double pi = std::numbers::pi;
+  size_t open = 0, near = 0;
+  double nearC0 = 0;
+  for (uint32_t y = 0; y < g.height; ++y)
+    for (uint32_t x = 0; x < g.width; ++x) {
+      const float* t = g.at(x, y);
+      if (t[3] == 0.0f || std::fabs(t[1]) > 1e-4f || t[5] < 0.999f) continue;  // the plane's top only
+      const double r = std::hypot(double(t[0]), double(t[2]));
+      const float* p = &c[(size_t(y) * g.width + x) * 16];
+      if (r > 0.95 && open < 50) {
+        ++open;
+        for (int i = 0; i < 16; ++i) {
+          const double band = i == 0 ? pi : i < 4 ? 2 * pi / 3 : i < 9 ? pi / 4 : 0.0;
+          EXPECT_NEAR(p[i], band * yUp[size_t(i)], 0.03) << i;
+        }
+      }
+      if (r < 0.35) ++near, nearC0 += p[0];
+    }
+  ASSERT_GT(open, 10u);
+  ASSERT_GT(near, 10u);
+  EXPECT_LT(nearC0 / double(near), 0.8 * pi * yUp[0]);
 }
 
 }  // namespace

@@ -119,6 +119,8 @@ int main(int argc, char** argv) {
   sweep->add_flag("!--no-vulkan", so.vulkan, "emulator only");
   sweep->add_option("--vis-maps", so.visMaps,
                     "comma-separated SH visibility map counts K for fis (0: none), against a reference with visibility");
+  sweep->add_option("--vis-rays", so.visRays,
+                    "rays per pixel of the Embree order-4 SH visibility fit (the SH-order error; 0: skip)")->check(CLI::Range(0, 1 << 20));
   bench->add_option("--technique", bo.technique, "shading technique (default: the scene's); passes default to gbuffer,shade");
   bench->add_option("--samples", bo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
   try {

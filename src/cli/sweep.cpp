@@ -209,14 +209,43 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
     std::ofstream vcsv(vPath);
     if (!vcsv) throw std::runtime_error("sweep: cannot write " + vPath);
     vcsv << "maps,samples,rank,ms_shadow_emu,ms_fit_emu,ms_filter_emu,ms_shade_emu,ms_shadow_vulkan,ms_fit_vulkan,ms_filter_vulkan,"
-            "ms_shade_vulkan,rmse,relmse,psnr,bit_identical,values\n";
+            "ms_shade_vulkan,rmse,relmse,psnr,rmse_unfiltered,psnr_unfiltered,bit_identical,values\n";
     scene.technique = "fis";
+    const uint32_t visMapsScene = scene.visMaps;
+    // The best an order-4 SH can do (the paper's Figure 5 (b)): an Embree fit per pixel from visRays
+    // stratified rays, shaded by the same pass; its error is the SH-order error.
+    if (opts.visRays) {
+      scene.visMaps = std::max(1u, visMapsScene);
+      const ShadeInputs in = shadeInputsEmu(scene, *env.texture, *dev);
+      VisibilityImage ideal;
+      ideal.width = g.width, ideal.height = g.height;
+      const double ms = timeMs(
+          [&] { ideal.coeffs = referenceVisibilitySh(scene, g.texels, g.width, g.height, opts.visRays, scene.visFitCosine); });
+      std::vector<float> img;
+      shadeEmu(scene, g, in, *dev, img, &ideal);
+      const ImageMetrics m = imageMetrics(img, ref, covered);
+      vcsv << std::fixed << "ideal," << scene.fisSamples << ",16,,,,,,,,," << std::setprecision(6) << m.rmse << "," << m.relMse << ","
+           << std::setprecision(3) << m.psnr << ",,,,\n";
+      log << "  fis + visibility, Embree order-4 SH fit from " << opts.visRays << " rays per pixel (" << std::setprecision(1)
+          << ms / 1000 << " s): RMSE " << std::setprecision(5) << m.rmse << "  PSNR " << std::setprecision(2) << m.psnr
+          << " dB (the SH-order error)\n";
+    }
     for (uint32_t K : visMaps) {
       scene.visMaps = K;
       const ShadeInputs in = shadeInputsEmu(scene, *env.texture, *dev);
       VisibilityTimes te, tv;
       std::unique_ptr<VisibilityImage> vis;
-      if (in.visibility) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *in.visibility, *dev, &te));
+      ImageMetrics mu{};
+      if (in.visibility) {
+        // Unfiltered first (the angular-sampling error), then the filter on it (the filter's part).
+        VisibilitySetup unfiltered = *in.visibility;
+        unfiltered.settings.filterRadius = 0;
+        VisibilityImage raw = visibilityEmu(scene, g, unfiltered, *dev, &te);
+        std::vector<float> imgU;
+        shadeEmu(scene, g, in, *dev, imgU, &raw);
+        mu = imageMetrics(imgU, ref, covered);
+        te.filterMs = timeMs([&] { vis = std::make_unique<VisibilityImage>(visibilityFilterEmu(g, raw, *in.visibility, *dev)); });
+      }
       std::vector<float> img;
       const double msShade = timeMs([&] { shadeEmu(scene, g, in, *dev, img, vis.get()); });
       double msVk = NAN;
@@ -233,14 +262,17 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
       const uint32_t rank = in.visibility ? in.visibility->rank : 0;
       vcsv << std::fixed << K << "," << scene.fisSamples << "," << rank << "," << std::setprecision(2) << te.shadowMs << "," << te.fitMs
            << "," << te.filterMs << "," << msShade << "," << tv.shadowMs << "," << tv.fitMs << "," << tv.filterMs << "," << msVk << ","
-           << std::setprecision(6) << m.rmse << "," << m.relMse << "," << std::setprecision(3) << m.psnr << "," << same << ","
-           << img.size() << "\n";
+           << std::setprecision(6) << m.rmse << "," << m.relMse << "," << std::setprecision(3) << m.psnr << ","
+           << std::setprecision(6) << (vis ? mu.rmse : m.rmse) << "," << std::setprecision(3) << (vis ? mu.psnr : m.psnr) << ","
+           << same << "," << img.size() << "\n";
       log << "  fis + visibility " << std::setw(3) << K << " maps (rank " << std::setw(2) << rank << ")  emu shadow "
           << std::setprecision(1) << te.shadowMs << " + fit " << te.fitMs << " + filter " << te.filterMs << " + shade " << msShade
-          << " ms  RMSE " << std::setprecision(5) << m.rmse << "  PSNR " << std::setprecision(2) << m.psnr << " dB";
+          << " ms  RMSE " << std::setprecision(5) << m.rmse << " (unfiltered " << (vis ? mu.rmse : m.rmse) << ")  PSNR "
+          << std::setprecision(2) << m.psnr << " dB";
       if (ctx) log << "  " << same << "/" << img.size() << " bit-identical";
       log << "\n";
     }
+    scene.visMaps = visMapsScene;
     log << "wrote " << vPath << "\n";
   }
   const std::string stem = std::filesystem::path(opts.scene).stem().string();

@@ -32,6 +32,7 @@ struct SweepOptions {
   // SH visibility study (issue 16): comma-separated map counts K (0 = no visibility) of technique fis
   // at the scene's sample count, against a reference with visibility; writes visibility.csv.
   std::string visMaps;
+  uint32_t visRays = 10000;  // the per-pixel Embree SH fit (the best an order-4 SH can do); 0: skip
 };
 
 int sweepCommand(const SweepOptions& opts, std::ostream& log);

@@ -1,6 +1,8 @@
 #include "reference/reference.h"
 
 #include <embree3/rtcore.h>
+#include "passes/shadow.h"
+#include "inputs/visibility.h"
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -381,6 +383,32 @@ std::vector<float> renderReference(const Scene& scene, const EnvImage& envImg, c
       std::lock_guard<std::mutex> lock(progressMutex);
       opts.progress(double(done) / H);
     }
+  });
+  return out;
+}
+
+std::vector<float> referenceVisibilitySh(const Scene& scene, const std::vector<float>& gbuffer, uint32_t width,
+                                         uint32_t height, uint32_t rays, bool cosine) {
+  const World world(scene);
+  const std::vector<Vec3> dirs = sphereDirections(rays);
+  std::vector<std::array<double, 16>> Y;
+  for (const Vec3& d : dirs) Y.push_back(sh16BasisDouble(d));
+  const size_t n = size_t(width) * height;
+  std::vector<float> out(n * 16, 0.0f);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    const float* t = &gbuffer[i * 16];
+    D3 nrm{t[4], t[5], t[6]};
+    const bool geometry = t[3] != 0.0f && reference::dot(nrm, nrm) > 0;
+    nrm = geometry ? reference::normalize(nrm) : D3{0, 1, 0};
+    const D3 origin = D3{t[0], t[1], t[2]} + nrm * 1e-4;
+    double c[16] = {};
+    for (size_t j = 0; j < dirs.size(); ++j) {
+      const D3 w{dirs[j][0], dirs[j][1], dirs[j][2]};
+      const double weight = cosine ? std::max(0.0, reference::dot(nrm, w)) : 1.0;
+      if (weight == 0.0 || (geometry && world.occluded(origin, w))) continue;
+      for (int k = 0; k < 16; ++k) c[k] += weight * Y[j][size_t(k)];
+    }
+    for (int k = 0; k < 16; ++k) out[i * 16 + size_t(k)] = float(c[k] * 4 * kPi / double(dirs.size()));
   });
   return out;
 }

@@ -35,6 +35,15 @@ struct ReferenceOptions {
 /// when a BRDF has no reference implementation.
 std::vector<float> renderReference(const Scene& scene, const EnvImage& env, const ReferenceOptions& opts);
 
+/// The best an order-4 SH can do for a G-buffer's visibility (issue 16, the FIS paper's Figure 5 (b)):
+/// per pixel with geometry (G0.w != 0; `gbuffer`: 16 floats per pixel, G0 position, G1 normal), an
+/// Embree occlusion ray along each of `rays` stratified directions (spherical Fibonacci set) from the
+/// position offset 1e-4 along the normal, and the projection c_i = (4 pi / rays) sum_j V_j w_j
+/// y_i(w_j) with w_j = max(0, n . w_j) (cosine fit) or 1, in double. 16 floats per pixel, the layout of
+/// passes/visibility.h VisibilityImage; background pixels get the unoccluded projection.
+std::vector<float> referenceVisibilitySh(const Scene& scene, const std::vector<float>& gbuffer, uint32_t width,
+                                         uint32_t height, uint32_t rays, bool cosine);
+
 /// CLI: loads the scene and environment, renders, writes the EXR (and a tone-mapped PNG), with a
 /// progress bar on stderr.
 struct ReferenceCommandOptions {
