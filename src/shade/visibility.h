@@ -15,7 +15,8 @@
 // Regularisation towards the unoccluded transfer t (a prior, documented): luminance-sampled directions
 // cluster around the bright parts of the sky (16 forest directions give rank 13 of 16), so modes the
 // samples do not constrain would take any value and the diffuse product (below) would integrate them
-// against the whole sphere's lighting. Solving min |Y c - V|^2 + mu^2 |c - t|^2 instead gives
+// against the whole sphere's lighting. Instead the unoccluded transfer t is taken as known and only the
+// occlusion is fitted: c = t + d, d = argmin |Y d - (V - T)|^2 + mu^2 |d|^2, that is
 //   c = t + M+ Y^T (V - T) = t + sum_k w_k (V_k - T_k),   w_k = M+ y(omega_k),
 // with T_k the unoccluded sample (max(0, n.omega_k), or 1): the residual is -T_k where map k
 // occludes and 0 elsewhere, so an unoccluded pixel gets exactly t and occlusion moves only what the
