@@ -381,4 +381,50 @@ TEST(Visibility, EmbreeShFitOfAnOpenPixelIsTheClampedCosineProjection) {
   EXPECT_LT(nearC0 / double(near), 0.8 * pi * yUp[0]);
 }
 
+TEST(Visibility, ThinPlateAboveTheFloor) {
+  // Thin geometry: a zero-thickness plate (0.6 x 0.6) 0.03 above the floor. Its top is lit for every
+  // direction at least 20 degrees above it (the floor 0.03 below must not shadow it, nor the plate
+  // itself), and the open floor 0.1 or more outside the plate's edge is lit for directions 60 degrees
+  // up or higher (the plate's shadow reaches 0.017 beyond its edge there).
+  const auto dir = std::filesystem::path(SHADETWIN_SOURCE_DIR) / "build-test-scenes";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / "thin_plate.json";
+  std::ofstream(path) << R"({"image": {"width": 192, "height": 192},
+    "camera": {"eye": [0, 1.6, 1.6], "target": [0, 0, 0], "fov": 45, "near": 0.5, "far": 6},
+    "environment": {"file": "../assets/hdri/forest.exr"},
+    "objects": [{"mesh": "plane", "scale": 1.0}, {"mesh": "plane", "scale": 0.3, "translate": [0, 0.03, 0]}]})";
+  const shadetwin::Scene scene = shadetwin::loadScene(path.string());
+  const float black[4] = {0, 0, 0, 1};
+  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, 1, 1, black);
+  shadetwin::VisibilitySettings vs;
+  vs.maps = 64;
+  vs.size = 1024;
+  vs.fitCosine = false;
+  const auto v = shadetwin::visibilitySetup(scene, env, vs);
+  const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev());
+  const emu::Texture maps = shadetwin::shadowMapArray(shadetwin::shadowEmu(scene, v.directions, vs.size, dev()));
+  namespace sc = shadetwin::shade::scalar;
+  const auto mapS = shadetwin::environmentSampler(maps, dev(), false), dataS = shadetwin::environmentSampler(*v.data, dev(), false);
+  const sc::VisSettings s{maps.layers(), maps.width(), sc::kVisFitV, v.biasConst, v.biasSlope};
+  size_t plateTests = 0, plateShadowed = 0, floorTests = 0, floorShadowed = 0;
+  for (uint32_t y = 0; y < g.height; ++y)
+    for (uint32_t x = 0; x < g.width; ++x) {
+      const float* t = g.at(x, y);
+      if (t[3] == 0.0f || t[5] < 0.999f) continue;
+      const shadetwin::shade::V3<float> p(t[0], t[1], t[2]), n(0.0f, 1.0f, 0.0f);
+      const bool plate = std::fabs(t[1] - 0.03f) < 1e-4f;
+      const bool open = std::fabs(t[1]) < 1e-4f && std::max(std::fabs(t[0]), std::fabs(t[2])) > 0.4f;
+      for (uint32_t k = 0; k < vs.maps; ++k) {
+        const float up = v.directions[k][1];
+        const bool lit = sc::visResidual(mapS, dataS, s, int(k), p, n) == 0.0f;
+        if (plate && up > std::sin(20 * std::numbers::pi / 180)) ++plateTests, plateShadowed += !lit;
+        if (open && up > std::sin(60 * std::numbers::pi / 180)) ++floorTests, floorShadowed += !lit;
+      }
+    }
+  ASSERT_GT(plateTests, 1000u);
+  ASSERT_GT(floorTests, 1000u);
+  EXPECT_EQ(plateShadowed, 0u) << plateShadowed << " of " << plateTests;
+  EXPECT_EQ(floorShadowed, 0u) << floorShadowed << " of " << floorTests;
+}
+
 }  // namespace
