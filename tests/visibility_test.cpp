@@ -292,6 +292,32 @@ shadetwin::Scene sphereOnPlane() {
   return shadetwin::loadScene(p.string());
 }
 
+// 64 uniform directions (a black environment), 1024^2 maps of `scene`, its G-buffer, and whether
+// map k leaves a point lit (the shared visResidual, V fit, the default bias).
+struct MapTests {
+  shadetwin::VisibilitySetup v;
+  shadetwin::GBuffer g;
+  emu::Texture maps;
+  explicit MapTests(const shadetwin::Scene& scene)
+      : v(setup(scene)), g(shadetwin::gbufferEmu(scene, dev())),
+        maps(shadetwin::shadowMapArray(shadetwin::shadowEmu(scene, v.directions, v.settings.size, dev()))) {}
+  static shadetwin::VisibilitySetup setup(const shadetwin::Scene& scene) {
+    const float black[4] = {0, 0, 0, 1};
+    const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, 1, 1, black);
+    shadetwin::VisibilitySettings vs;
+    vs.maps = 64;
+    vs.size = 1024;
+    vs.fitCosine = false;
+    return shadetwin::visibilitySetup(scene, env, vs);
+  }
+  bool lit(uint32_t k, shadetwin::shade::V3<float> p, shadetwin::shade::V3<float> n) const {
+    namespace sc = shadetwin::shade::scalar;
+    const auto mapS = shadetwin::environmentSampler(maps, dev(), false), dataS = shadetwin::environmentSampler(*v.data, dev(), false);
+    const sc::VisSettings s{maps.layers(), maps.width(), sc::kVisFitV, v.biasConst, v.biasSlope};
+    return sc::visResidual(mapS, dataS, s, int(k), p, n) == 0.0f;
+  }
+};
+
 TEST(Visibility, BiasAvoidsAcneAndKeepsContactShadows) {
   // 64 uniform directions, 1024^2 maps, the default bias (1 texel + 1.5 texels x tan theta). Acne: no
   // map may shadow an open pixel of the plane (farther than 0.8 from the sphere's axis: outside the
@@ -302,18 +328,10 @@ TEST(Visibility, BiasAvoidsAcneAndKeepsContactShadows) {
   // 0.22 of the axis, inside the disk the sphere shades from above) is shadowed from the direction
   // nearest straight up (64 uniform directions: about 10 degrees off; the disk moves 0.05).
   const shadetwin::Scene scene = sphereOnPlane();
-  const float black[4] = {0, 0, 0, 1};
-  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, 1, 1, black);
-  shadetwin::VisibilitySettings vs;
-  vs.maps = 64;
-  vs.size = 1024;
-  vs.fitCosine = false;
-  const auto v = shadetwin::visibilitySetup(scene, env, vs);
-  const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev());
-  const emu::Texture maps = shadetwin::shadowMapArray(shadetwin::shadowEmu(scene, v.directions, vs.size, dev()));
-  namespace sc = shadetwin::shade::scalar;
-  const auto mapS = shadetwin::environmentSampler(maps, dev(), false), dataS = shadetwin::environmentSampler(*v.data, dev(), false);
-  const sc::VisSettings s{maps.layers(), maps.width(), sc::kVisFitV, v.biasConst, v.biasSlope};
+  const MapTests T(scene);
+  const shadetwin::VisibilitySetup& v = T.v;
+  const shadetwin::GBuffer& g = T.g;
+  const uint32_t maps = v.settings.maps;
   size_t openTests = 0, acne = 0, sphereTests = 0, selfShadow = 0, contact = 0, contactShadowed = 0;
   for (uint32_t y = 0; y < g.height; ++y)
     for (uint32_t x = 0; x < g.width; ++x) {
@@ -324,10 +342,10 @@ TEST(Visibility, BiasAvoidsAcneAndKeepsContactShadows) {
       const shadetwin::shade::V3<float> n(t[4] / nl, t[5] / nl, t[6] / nl);
       const double r = std::hypot(double(t[0]), double(t[2]));
       const bool plane = std::fabs(t[1]) < 1e-4f && n.y > 0.999f;
-      for (uint32_t k = 0; k < vs.maps; ++k) {
+      for (uint32_t k = 0; k < maps; ++k) {
         const Vec3& w = v.directions[k];
         const double c = n.x * w[0] + n.y * w[1] + n.z * w[2];
-        const bool lit = sc::visResidual(mapS, dataS, s, int(k), p, n) == 0.0f;
+        const bool lit = T.lit(k, p, n);
         if (plane && r > 0.8 && c > std::sin(45 * std::numbers::pi / 180)) ++openTests, acne += !lit;
         if (!plane && w[1] > 0.0f && c > std::sin(25 * std::numbers::pi / 180)) ++sphereTests, selfShadow += !lit;
       }
@@ -337,7 +355,7 @@ TEST(Visibility, BiasAvoidsAcneAndKeepsContactShadows) {
         size_t up = 0;
         for (size_t k = 1; k < v.directions.size(); ++k)
           if (v.directions[k][1] > v.directions[up][1]) up = k;
-        contactShadowed += sc::visResidual(mapS, dataS, s, int(up), p, n) != 0.0f;
+        contactShadowed += !T.lit(uint32_t(up), p, n);
       }
     }
   ASSERT_GT(openTests, 1000u);
@@ -394,18 +412,10 @@ TEST(Visibility, ThinPlateAboveTheFloor) {
     "environment": {"file": "../assets/hdri/forest.exr"},
     "objects": [{"mesh": "plane", "scale": 1.0}, {"mesh": "plane", "scale": 0.3, "translate": [0, 0.03, 0]}]})";
   const shadetwin::Scene scene = shadetwin::loadScene(path.string());
-  const float black[4] = {0, 0, 0, 1};
-  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, 1, 1, black);
-  shadetwin::VisibilitySettings vs;
-  vs.maps = 64;
-  vs.size = 1024;
-  vs.fitCosine = false;
-  const auto v = shadetwin::visibilitySetup(scene, env, vs);
-  const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev());
-  const emu::Texture maps = shadetwin::shadowMapArray(shadetwin::shadowEmu(scene, v.directions, vs.size, dev()));
-  namespace sc = shadetwin::shade::scalar;
-  const auto mapS = shadetwin::environmentSampler(maps, dev(), false), dataS = shadetwin::environmentSampler(*v.data, dev(), false);
-  const sc::VisSettings s{maps.layers(), maps.width(), sc::kVisFitV, v.biasConst, v.biasSlope};
+  const MapTests T(scene);
+  const shadetwin::VisibilitySetup& v = T.v;
+  const shadetwin::GBuffer& g = T.g;
+  const uint32_t maps = v.settings.maps;
   size_t plateTests = 0, plateShadowed = 0, floorTests = 0, floorShadowed = 0;
   for (uint32_t y = 0; y < g.height; ++y)
     for (uint32_t x = 0; x < g.width; ++x) {
@@ -414,9 +424,9 @@ TEST(Visibility, ThinPlateAboveTheFloor) {
       const shadetwin::shade::V3<float> p(t[0], t[1], t[2]), n(0.0f, 1.0f, 0.0f);
       const bool plate = std::fabs(t[1] - 0.03f) < 1e-4f;
       const bool open = std::fabs(t[1]) < 1e-4f && std::max(std::fabs(t[0]), std::fabs(t[2])) > 0.4f;
-      for (uint32_t k = 0; k < vs.maps; ++k) {
+      for (uint32_t k = 0; k < maps; ++k) {
         const float up = v.directions[k][1];
-        const bool lit = sc::visResidual(mapS, dataS, s, int(k), p, n) == 0.0f;
+        const bool lit = T.lit(k, p, n);
         if (plate && up > std::sin(20 * std::numbers::pi / 180)) ++plateTests, plateShadowed += !lit;
         if (open && up > std::sin(60 * std::numbers::pi / 180)) ++floorTests, floorShadowed += !lit;
       }
