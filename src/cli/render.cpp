@@ -116,7 +116,6 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       t0 = Clock::now();
       image = shadeEmu(scene, g, in, dev, vis.get());
       const double tShade = msSince(t0);
-      if (vis) visibilityLines(passes, "emu", *vsetup, vt);
       if (rotated.texture)
         passes << "  environment turned      " << std::setw(8) << tRotate << " ms  (" << degrees << " degrees = "
                << environmentShift(env0.width, degrees) << " columns, + MIP chain)\n";
@@ -139,6 +138,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
         passes << "  G-buffer (emu, " << dev.name << ")  " << std::setw(8) << tGbuf << " ms  (vertex " << gs.vertexMs
                << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
                << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
+      if (vis) visibilityLines(passes, "emu", *vsetup, vt);  // after the G-buffer they read
       passes << "  shading (emu, " << scene.technique;
       if (progressive) passes << ", " << scene.misSamples << " sample pairs, frame " << f;
       else if (scene.technique != "mirror") passes << ", " << scene.fisSamples << " samples";
@@ -159,10 +159,10 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       const VisibilitySetup* vsetup = movedSetup ? movedSetup.get() : in.visibility.get();
       if (vsetup) vis = std::make_unique<VisibilityImage>(visibilityVulkan(*ctx, scene, g, *vsetup, &vt));
       image = spass->run(g, vis.get());
-      if (vis) visibilityLines(passes, "vulkan", *vsetup, vt);
       passes << "  Vulkan set-up (" << ctx->deviceName() << ")  " << std::setw(8) << tSetup << " ms"
              << (cache.lastRebuilt() ? "" : "  (technique inputs reused)") << "\n";
       if (drawGbuffer) passes << "  G-buffer (vulkan)        " << std::setw(8) << gpass->lastMs << " ms  (submit to read-back)\n";
+      if (vis) visibilityLines(passes, "vulkan", *vsetup, vt);
       passes << "  shading (vulkan, " << scene.technique << ") " << std::setw(8) << spass->lastMs << " ms  (submit to read-back)\n";
     }
     // Passes the technique does not use are not run.
