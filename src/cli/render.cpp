@@ -91,6 +91,12 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     scene.misFrame = f;
     if (moving) scene.objects[0].model = rotateAboutOwnAxis(model0, opts.objectRotate * f);
     const bool drawGbuffer = f == 0 || moving;
+    // The frame's visibility set-up: the cached one, or, when an object moved (the scene bounds and so
+    // the maps' matrices change; the directions do not), a new one.
+    auto frameVisibility = [&](const ShadeInputs& in, const emu::Texture& envTex) -> std::shared_ptr<const VisibilitySetup> {
+      if (!in.visibility || !moving) return in.visibility;
+      return std::make_shared<VisibilitySetup>(visibilitySetup(scene, envTex, visibilitySettings(scene)));
+    };
     std::ostringstream passes;
     passes << std::fixed << std::setprecision(1);
     const double degrees = opts.envRotate * f;
@@ -107,11 +113,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       const ShadeInputs& in = cache.emu(scene, *env.texture, dev);
       VisibilityTimes vt;
       std::unique_ptr<VisibilityImage> vis;
-      // A moving object changes the scene bounds: the maps' matrices are set up again (directions unchanged).
-      std::unique_ptr<VisibilitySetup> movedSetup;
-      if (in.visibility && moving)
-        movedSetup = std::make_unique<VisibilitySetup>(visibilitySetup(scene, *env.texture, visibilitySettings(scene)));
-      const VisibilitySetup* vsetup = movedSetup ? movedSetup.get() : in.visibility.get();
+      const std::shared_ptr<const VisibilitySetup> vsetup = frameVisibility(in, *env.texture);
       if (vsetup) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *vsetup, dev, &vt));
       t0 = Clock::now();
       image = shadeEmu(scene, g, in, dev, vis.get());
@@ -153,10 +155,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       if (drawGbuffer) g = gpass->run();
       VisibilityTimes vt;
       std::unique_ptr<VisibilityImage> vis;
-      std::unique_ptr<VisibilitySetup> movedSetup;
-      if (in.visibility && moving)
-        movedSetup = std::make_unique<VisibilitySetup>(visibilitySetup(scene, *env.texture, visibilitySettings(scene)));
-      const VisibilitySetup* vsetup = movedSetup ? movedSetup.get() : in.visibility.get();
+      const std::shared_ptr<const VisibilitySetup> vsetup = frameVisibility(in, *env.texture);
       if (vsetup) vis = std::make_unique<VisibilityImage>(visibilityVulkan(*ctx, scene, g, *vsetup, &vt));
       image = spass->run(g, vis.get());
       passes << "  Vulkan set-up (" << ctx->deviceName() << ")  " << std::setw(8) << tSetup << " ms"
