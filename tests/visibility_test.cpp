@@ -280,16 +280,21 @@ TEST(Visibility, FilterAveragesTheSurfaceAndStopsAtEdges) {
     }
 }
 
-// A sphere of radius 0.3 resting on a plane, written next to the build (relative asset paths).
-shadetwin::Scene sphereOnPlane() {
+// A 192^2 scene with `objects` (a JSON array) under forest, seen from above the front, written next to
+// the build (relative asset paths) and loaded.
+shadetwin::Scene testScene(const std::string& name, const std::string& objects) {
   const auto dir = std::filesystem::path(SHADETWIN_SOURCE_DIR) / "build-test-scenes";
   std::filesystem::create_directories(dir);
-  const auto p = dir / "sphere_on_plane.json";
+  const auto p = dir / name;
   std::ofstream(p) << R"({"image": {"width": 192, "height": 192},
     "camera": {"eye": [0, 1.6, 1.6], "target": [0, 0, 0], "fov": 45, "near": 0.5, "far": 6},
-    "environment": {"file": "../assets/hdri/forest.exr"},
-    "objects": [{"mesh": "plane", "scale": 1.0}, {"mesh": "sphere", "fit": 0.6}]})";
+    "environment": {"file": "../assets/hdri/forest.exr"}, "objects": )" + objects + "}";
   return shadetwin::loadScene(p.string());
+}
+
+// A sphere of radius 0.3 resting on a plane.
+shadetwin::Scene sphereOnPlane() {
+  return testScene("sphere_on_plane.json", R"([{"mesh": "plane", "scale": 1.0}, {"mesh": "sphere", "fit": 0.6}])");
 }
 
 // 64 uniform directions (a black environment), 1024^2 maps of `scene`, its G-buffer, and whether
@@ -404,14 +409,8 @@ TEST(Visibility, ThinPlateAboveTheFloor) {
   // direction at least 20 degrees above it (the floor 0.03 below must not shadow it, nor the plate
   // itself), and the open floor 0.1 or more outside the plate's edge is lit for directions 60 degrees
   // up or higher (the plate's shadow reaches 0.017 beyond its edge there).
-  const auto dir = std::filesystem::path(SHADETWIN_SOURCE_DIR) / "build-test-scenes";
-  std::filesystem::create_directories(dir);
-  const auto path = dir / "thin_plate.json";
-  std::ofstream(path) << R"({"image": {"width": 192, "height": 192},
-    "camera": {"eye": [0, 1.6, 1.6], "target": [0, 0, 0], "fov": 45, "near": 0.5, "far": 6},
-    "environment": {"file": "../assets/hdri/forest.exr"},
-    "objects": [{"mesh": "plane", "scale": 1.0}, {"mesh": "plane", "scale": 0.3, "translate": [0, 0.03, 0]}]})";
-  const shadetwin::Scene scene = shadetwin::loadScene(path.string());
+  const shadetwin::Scene scene = testScene(
+      "thin_plate.json", R"([{"mesh": "plane", "scale": 1.0}, {"mesh": "plane", "scale": 0.3, "translate": [0, 0.03, 0]}])");
   const MapTests T(scene);
   const shadetwin::VisibilitySetup& v = T.v;
   const shadetwin::GBuffer& g = T.g;

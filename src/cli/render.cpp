@@ -79,6 +79,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   std::unique_ptr<vk::Context> ctx;
   std::unique_ptr<GbufferPassVk> gpass;
   std::unique_ptr<ShadePassVk> spass;
+  std::unique_ptr<VisibilityPassVk> vpass;
   GBuffer g;
   // MIS techniques draw new random numbers every frame (Philox key word 1 = the frame) and average
   // progressively: frame f writes the mean of the frames since the environment last changed.
@@ -156,7 +157,10 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       VisibilityTimes vt;
       std::unique_ptr<VisibilityImage> vis;
       const std::shared_ptr<const VisibilitySetup> vsetup = frameVisibility(in, *env.texture);
-      if (vsetup) vis = std::make_unique<VisibilityImage>(visibilityVulkan(*ctx, scene, g, *vsetup, &vt));
+      if (vsetup) {
+        if (!vpass || moving) vpass = std::make_unique<VisibilityPassVk>(*ctx, scene, vsetup->settings.size);  // built once
+        vis = std::make_unique<VisibilityImage>(vpass->run(g, *vsetup, &vt));
+      }
       image = spass->run(g, vis.get());
       passes << "  Vulkan set-up (" << ctx->deviceName() << ")  " << std::setw(8) << tSetup << " ms"
              << (cache.lastRebuilt() ? "" : "  (technique inputs reused)") << "\n";

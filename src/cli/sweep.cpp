@@ -252,7 +252,9 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
       size_t same = 0;
       if (ctx) {
         std::unique_ptr<VisibilityImage> visV;
-        if (in.visibility) visV = std::make_unique<VisibilityImage>(visibilityVulkan(*ctx, scene, gv, *in.visibility, &tv));
+        if (in.visibility)
+          visV = std::make_unique<VisibilityImage>(
+              VisibilityPassVk(*ctx, scene, in.visibility->settings.size).run(gv, *in.visibility, &tv));
         ShadePassVk pass(*ctx, scene, in);
         const std::vector<float> v = pass.run(gv, visV.get());
         msVk = pass.lastMs;

@@ -27,12 +27,11 @@ emu::Texture shadowMapArray(const ShadowMaps& maps);
 
 VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v,
                                  const emu::DeviceProfile& dev);
-VisibilityImage visibilityFitVulkan(vk::Context& ctx, const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v);
+
 
 /// The spatial filter of the coefficient images (shade/visibility.h visFilter); radius 0: none.
 VisibilityImage visibilityFilterEmu(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v,
                                     const emu::DeviceProfile& dev);
-VisibilityImage visibilityFilterVulkan(vk::Context& ctx, const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v);
 /// The coefficient image and the G-buffer's G0, G1 as the RGBA32F 2D arrays the filter kernels read.
 emu::Texture visibilityCoeffTexture(const VisibilityImage& in);
 emu::Texture gbufferPositionNormalTexture(const GBuffer& g);
@@ -43,7 +42,23 @@ struct VisibilityTimes {
 /// A frame's visibility on one build: the K shadow maps of v's directions, then the fit of `g`.
 VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const VisibilitySetup& v, const emu::DeviceProfile& dev,
                               VisibilityTimes* times = nullptr);
-VisibilityImage visibilityVulkan(vk::Context& ctx, const Scene& scene, const GBuffer& g, const VisibilitySetup& v,
-                                 VisibilityTimes* times = nullptr);
+
+/// The same passes on a Vulkan device, built once (the shadow pass of `scene` at `mapSize`, the fit
+/// and filter kernels) and run every frame; a moved object needs a new one (the scene's geometry is
+/// uploaded at construction, as GbufferPassVk's).
+class VisibilityPassVk {
+ public:
+  VisibilityPassVk(vk::Context& ctx, const Scene& scene, uint32_t mapSize);
+  ~VisibilityPassVk();
+  /// The K maps of v's directions, then the fit and the filter of `g`.
+  VisibilityImage run(const GBuffer& g, const VisibilitySetup& v, VisibilityTimes* times = nullptr);
+  /// The stages alone, on given inputs (verify visibility).
+  VisibilityImage fit(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v);
+  VisibilityImage filter(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace shadetwin

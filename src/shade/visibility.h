@@ -46,9 +46,9 @@ struct VisSettings {
   float biasSlope;  // b1, depth units per unit of tan theta
 };
 
-// The visibility sample of map k (uniform) at p, unit normal n, minus the prior's value there:
-// 1 or 0 (kVisFitV), times max(0, n . omega_k) (kVisFitVCos). data row k: texels 0-3 the light
-// matrix's columns, 4 omega_k.
+// The residual V_k - T_k of map k (uniform) at p, unit normal n: 0 where the map leaves p lit, else
+// minus the unoccluded sample T_k (1 for kVisFitV, max(0, n . omega_k) for kVisFitVCos). data row k:
+// texels 0-3 the light matrix's columns, 4 omega_k.
 Float visResidual(Sampler2DArray maps, Sampler2D data, VisSettings s, int k, Float3 p, Float3 n) {
   Int row = Int(k);
   Float4 m0 = texelFetchUniform(data, 0, k, 0);

@@ -125,7 +125,8 @@ int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
   std::unique_ptr<VisibilityImage> visE, visV;
   if (inE.visibility) {
     visE = std::make_unique<VisibilityImage>(visibilityEmu(s.scene, gE, *inE.visibility, *s.dev));
-    visV = std::make_unique<VisibilityImage>(visibilityVulkan(*s.ctx, s.scene, gV, *inV.visibility));
+    visV = std::make_unique<VisibilityImage>(
+        VisibilityPassVk(*s.ctx, s.scene, inV.visibility->settings.size).run(gV, *inV.visibility));
   }
   std::vector<float> e = shadeEmu(s.scene, gE, inE, *s.dev, visE.get());
   ShadePassVk pass(*s.ctx, s.scene, inV);
@@ -182,7 +183,8 @@ int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
   // raster and verify shadow check those stages).
   const GBuffer g = gbufferVulkan(*s.ctx, s.scene);
   const emu::Texture maps = shadowMapArray(shadowEmu(s.scene, v.directions, vs.size, *s.dev));
-  const VisibilityImage e = visibilityFitEmu(g, maps, v, *s.dev), k = visibilityFitVulkan(*s.ctx, g, maps, v);
+  VisibilityPassVk pass(*s.ctx, s.scene, vs.size);
+  const VisibilityImage e = visibilityFitEmu(g, maps, v, *s.dev), k = pass.fit(g, maps, v);
   out << vs.maps << " directions from the luminance of " << s.scene.environment
       << (v.uniformFallback ? " (none positive: uniform)" : "") << ", maps " << vs.size << "x" << vs.size
       << ", fit " << (vs.fitCosine ? "V max(0, n.w)" : "V") << ", rank of M " << v.rank << "/16\n";
@@ -200,7 +202,7 @@ int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
   VisibilitySetup vf = v;
   vf.settings.filterRadius = 2;
   vf.settings.filterEdgeAware = !opts.visibilityV;
-  const VisibilityImage fe = visibilityFilterEmu(g, e, vf, *s.dev), fk = visibilityFilterVulkan(*s.ctx, g, e, vf);
+  const VisibilityImage fe = visibilityFilterEmu(g, e, vf, *s.dev), fk = pass.filter(g, e, vf);
   out << "filter: radius " << vf.settings.filterRadius << ", " << (vf.settings.filterEdgeAware ? "edge-aware" : "box") << "\n";
   for (int c = 0; c < 16; ++c) t.push_back({"filtered c" + std::to_string(c)});
   for (size_t i = 0; i < fe.coeffs.size(); ++i) t[16 + i % 16].add(fe.coeffs[i], fk.coeffs[i]);
