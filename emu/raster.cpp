@@ -5,9 +5,13 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <type_traits>
+
+#include <immintrin.h>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -17,6 +21,23 @@
 
 namespace emu {
 
+namespace {
+// Fills n floats with v. Large clears bypass the cache (non-temporal stores: no read of the
+// lines first); a speed detail only, the values are those of std::fill_n.
+void fillStreaming(float* p, size_t n, float v) {
+#if defined(__AVX512F__)
+  size_t i = 0;
+  while (i < n && (reinterpret_cast<uintptr_t>(p + i) & 63)) p[i++] = v;
+  const __m512 x = _mm512_set1_ps(v);
+  for (; i + 16 <= n; i += 16) _mm512_stream_ps(p + i, x);
+  for (; i < n; ++i) p[i] = v;
+  _mm_sfence();
+#else
+  std::fill_n(p, n, v);
+#endif
+}
+}  // namespace
+
 Framebuffer::Framebuffer(uint32_t w, uint32_t h, int outputs, float clearDepth) { reset(w, h, outputs, clearDepth); }
 
 void Framebuffer::reset(uint32_t w, uint32_t h, int outputs, float clearDepth) {
@@ -25,7 +46,7 @@ void Framebuffer::reset(uint32_t w, uint32_t h, int outputs, float clearDepth) {
   depth.resize(n);
   color.resize(n * per);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384), [&](const tbb::blocked_range<size_t>& r) {
-    std::fill(depth.begin() + std::ptrdiff_t(r.begin()), depth.begin() + std::ptrdiff_t(r.end()), clearDepth);
+    fillStreaming(depth.data() + r.begin(), r.size(), clearDepth);
     std::fill(color.begin() + std::ptrdiff_t(r.begin() * per), color.begin() + std::ptrdiff_t(r.end() * per), 0.0f);
   });
 }
@@ -195,8 +216,7 @@ bool setupTriangle(const DeviceProfile& dev, const Framebuffer& fb, const WinVer
     t.topLeft[i] = dy > 0 || (dy == 0 && dx < 0);
   }
   const int bits = dev.raster.subPixelBits;
-  const int64_t one = int64_t(1) << bits;
-  auto floorDiv = [&](int64_t a) { return a >= 0 ? a / one : -((-a + one - 1) / one); };
+  auto floorDiv = [&](int64_t a) { return a >> bits; };  // floor(a / 2^bits): C++20 shifts signed values arithmetically
   int64_t minX = std::min({t.X[0], t.X[1], t.X[2]}), maxX = std::max({t.X[0], t.X[1], t.X[2]});
   int64_t minY = std::min({t.Y[0], t.Y[1], t.Y[2]}), maxY = std::max({t.Y[0], t.Y[1], t.Y[2]});
   t.x0 = int(std::max<int64_t>(floorDiv(minX), 0));
@@ -231,27 +251,131 @@ inline float interp(bool fused, const Plane3& p, float px, float py) {
 }
 
 // Depth-only pipelines (no fragment shader): coverage, depth and the depth test are per pixel and
-// nothing is interpolated but depth, so one triangle's pixels in a tile run a row at a time, 8
-// pixels per step, with the operations of the quad loop below: the same int64 edge functions
-// A PX - B PY + C (stepped by A 2^bits per pixel), the same plane equation madd(dady, py,
-// madd(dadx, px, a0)) per pixel, depth test less-or-equal in submission order. Pixels outside the
-// bounding box are never covered, so the span is box ∩ tile. Quads (for the stats) are the 2x2
-// blocks with a covered pixel, as the quad loop counts them. Bits equal the quad loop's
-// (tests/raster_test.cpp DepthOnlyRowPathEqualsTheQuadLoop).
-constexpr int kSpan = 8;
-using I64x8 = vec_t<int64_t, kSpan>;
-using F32x8 = vec_t<float, kSpan>;
-using I32x8 = vec_t<int32_t, kSpan>;
+// nothing is interpolated but depth, so one triangle's pixels in a tile run as 4x4 blocks of 16
+// lanes (llvmpipe's inner block), with the operations of the quad loop below: the same exact edge
+// functions A PX - B PY + C, the same plane equation madd(dady, py, madd(dadx, px, a0)) per pixel,
+// the depth test less-or-equal in submission order. Pixel order inside one triangle does not
+// matter (each pixel is touched once per triangle), so the bits equal the quad loop's
+// (tests/raster_test.cpp DepthOnlyBlockPathEqualsTheQuadLoop).
+//
+// Per triangle and tile, each edge is classified over the rectangle of blocks the triangle's box
+// touches: E affine, so its extremes over the rectangle are at its corners. An edge negative (or 0)
+// at all four corners rejects the triangle there; an edge positive at all four passes every pixel
+// and becomes the constant edge 0 PX - 0 PY + 1 (the big triangles' interior tiles test nothing).
+// When every remaining edge is within int32 at the four corners, so is every lane's E (it lies
+// between the corners' extremes), and the lanes use exact int32 edge values (one 16-lane register
+// with AVX-512); otherwise int64 lanes. The lanes add in unsigned arithmetic, modulo 2^32 (or
+// 2^64): a sum is exact when its true value is in range, whatever the partial sums were.
+constexpr int kBlockW = 4, kBlockH = 4, kLanes = kBlockW * kBlockH;
+using F32xL = vec_t<float, kLanes>;
+using I32xL = vec_t<int32_t, kLanes>;
 
 // Bit i set where lane i is true (-1). A speed detail only: the portable loop gives the same bits.
-inline uint32_t laneBits(I32x8 m) {
-#if defined(__AVX__)
-  return uint32_t(__builtin_ia32_movmskps256((vec_t<float, kSpan>)m));
+inline uint32_t laneBits(I32xL m) {
+#if defined(__AVX512DQ__)
+  return uint32_t(__builtin_ia32_cvtd2mask512((vec_t<int32_t, 16>)m));
+#elif defined(__AVX__)
+  const vec_t<float, 8> lo = (vec_t<float, 8>)__builtin_shufflevector(m, m, 0, 1, 2, 3, 4, 5, 6, 7);
+  const vec_t<float, 8> hi = (vec_t<float, 8>)__builtin_shufflevector(m, m, 8, 9, 10, 11, 12, 13, 14, 15);
+  return uint32_t(__builtin_ia32_movmskps256(lo)) | uint32_t(__builtin_ia32_movmskps256(hi)) << 8;
 #else
   uint32_t b = 0;
-  for (int i = 0; i < kSpan; ++i) b |= uint32_t(m[i] & 1) << i;
+  for (int i = 0; i < kLanes; ++i) b |= uint32_t(m[i] & 1) << i;
   return b;
 #endif
+}
+
+// 2x2 quads of a 4x4 block with a set bit (bit 4 r + c is pixel (c, r)).
+inline int blockQuads(uint32_t m) {
+  const uint32_t rows = (m | m >> 4) & 0x0f0fu;  // rows 0|1 in bits 0-3, rows 2|3 in bits 8-11
+  return std::popcount((rows | rows >> 1) & 0x0505u);
+}
+
+// A 4x4 block's 16 depths from four rows of the framebuffer (four 4-lane loads joined, so the
+// 16-lane value is built in registers, not stored in pieces and reloaded whole).
+inline F32xL loadBlock(const float* p, size_t stride) {
+  using F4 = vec_t<float, 4>;
+  using F8 = vec_t<float, 8>;
+  F4 r0, r1, r2, r3;
+  std::memcpy(&r0, p, 16), std::memcpy(&r1, p + stride, 16), std::memcpy(&r2, p + 2 * stride, 16), std::memcpy(&r3, p + 3 * stride, 16);
+  const F8 lo = __builtin_shufflevector(r0, r1, 0, 1, 2, 3, 4, 5, 6, 7), hi = __builtin_shufflevector(r2, r3, 0, 1, 2, 3, 4, 5, 6, 7);
+  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
+
+inline void storeBlock(float* p, size_t stride, F32xL v) {
+  using F4 = vec_t<float, 4>;
+  const F4 r0 = __builtin_shufflevector(v, v, 0, 1, 2, 3), r1 = __builtin_shufflevector(v, v, 4, 5, 6, 7);
+  const F4 r2 = __builtin_shufflevector(v, v, 8, 9, 10, 11), r3 = __builtin_shufflevector(v, v, 12, 13, 14, 15);
+  std::memcpy(p, &r0, 16), std::memcpy(p + stride, &r1, 16), std::memcpy(p + 2 * stride, &r2, 16), std::memcpy(p + 3 * stride, &r3, 16);
+}
+
+// The lane constants of a block: pixel offsets (dx, dy) of lane i = 4 dy + dx.
+template <class T>
+constexpr vec_t<T, kLanes> kLaneDx = {0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3, 0, 1, 2, 3};
+template <class T>
+constexpr vec_t<T, kLanes> kLaneDy = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3};
+
+template <class EdgeT, bool Fused>
+void depthOnlyBlocks(const int64_t A[3], const int64_t B[3], const int64_t C[3], int bits, const Plane3& pz, int bx0,
+                     int by0, int x1, int y1, Framebuffer& fb, size_t& quads, size_t& frags) {
+  // Edge values accumulate in unsigned lanes (wrap-around is defined; every value compared is inside
+  // EdgeT's range, see depthOnlyTriangle) and are compared as signed.
+  using U = std::make_unsigned_t<EdgeT>;
+  using EV = vec_t<EdgeT, kLanes>;
+  using UV = vec_t<U, kLanes>;
+  const int64_t step = int64_t(1) << bits;
+  // Lane offsets A dx - B dy and the step to the next block, modulo 2^32 (or 2^64).
+  UV off[3];
+  U stepX[3];
+  for (int e = 0; e < 3; ++e) {
+    off[e] = UV(U(A[e] * step) * kLaneDx<U> - U(B[e] * step) * kLaneDy<U>);
+    stepX[e] = U(kBlockW * A[e] * step);
+  }
+  const F32xL dadx = F32xL{} + pz.dadx, dady = F32xL{} + pz.dady, a0 = F32xL{} + pz.a0;
+  const int W = int(fb.width), H = int(fb.height);
+  const size_t stride = fb.width;
+  for (int by = by0; by <= y1; by += kBlockH) {
+    UV e0 = off[0], e1 = off[1], e2 = off[2];
+    {
+      const int64_t X0 = int64_t(bx0) << bits, Y0 = int64_t(by) << bits;
+      e0 += U(A[0] * X0 - B[0] * Y0 + C[0]), e1 += U(A[1] * X0 - B[1] * Y0 + C[1]), e2 += U(A[2] * X0 - B[2] * Y0 + C[2]);
+    }
+    const F32xL fy = kLaneDy<float> + float(by);
+    // Blocks inside the framebuffer load and store whole rows; a block past its last column or row
+    // (the guard band lets a triangle reach there) masks those lanes.
+    const bool allWhole = by + kBlockH <= H && (x1 | (kBlockW - 1)) < W;
+    for (int bx = bx0; bx <= x1; bx += kBlockW, e0 += stepX[0], e1 += stepX[1], e2 += stepX[2]) {
+      I32xL inV = __builtin_convertvector(((EV)e0 > 0) & ((EV)e1 > 0) & ((EV)e2 > 0), I32xL);
+      if (!allWhole) inV &= (kLaneDx<int32_t> + bx < W) & (kLaneDy<int32_t> + by < H);
+      const uint32_t in = laneBits(inV);
+      const F32xL fx = kLaneDx<float> + float(bx);
+      F32xL z;
+      if constexpr (Fused) {
+        for (int i = 0; i < kLanes; ++i) z[i] = __builtin_fmaf(dady[i], fy[i], __builtin_fmaf(dadx[i], fx[i], a0[i]));
+      } else {
+        z = dady * fy + (dadx * fx + a0);
+      }
+      float* row = fb.depth.data() + size_t(by) * stride + size_t(bx);
+      const bool whole = allWhole || (bx + kBlockW <= W && by + kBlockH <= H);
+      F32xL d;
+      if (whole) {
+        d = loadBlock(row, stride);
+      } else {
+        for (int i = 0; i < kLanes; ++i) d[i] = inV[i] ? row[size_t(i / kBlockW) * stride + size_t(i % kBlockW)] : 0.0f;
+      }
+      const I32xL liveV = inV & (z <= d);
+      const uint32_t live = laneBits(liveV);
+      quads += size_t(blockQuads(in));
+      frags += size_t(std::popcount(live));
+      const F32xL out = liveV ? z : d;
+      if (whole) {
+        storeBlock(row, stride, out);
+      } else {
+        for (int i = 0; i < kLanes; ++i)
+          if (liveV[i]) row[size_t(i / kBlockW) * stride + size_t(i % kBlockW)] = out[i];
+      }
+    }
+  }
 }
 
 template <bool Fused>
@@ -259,68 +383,28 @@ void depthOnlyTriangle(const TriSetup& s, int bits, int tx0, int ty0, int tx1, i
                        size_t& quads, size_t& frags) {
   const int x0 = std::max(s.x0, tx0), x1 = std::min(s.x1, tx1), y0 = std::max(s.y0, ty0), y1 = std::min(s.y1, ty1);
   if (x0 > x1 || y0 > y1) return;
+  // The blocks' rectangle: 4-aligned inside the 64-aligned tile.
+  const int bx0 = x0 & ~(kBlockW - 1), by0 = y0 & ~(kBlockH - 1);
+  const int rx1 = (x1 | (kBlockW - 1)), ry1 = (y1 | (kBlockH - 1));
   int64_t A[3], B[3], C[3];
+  bool narrow = true;
   for (int e = 0; e < 3; ++e) {
     const int j = e == 2 ? 0 : e + 1;
     A[e] = s.Y[j] - s.Y[e];
     B[e] = s.X[j] - s.X[e];
     C[e] = B[e] * s.Y[e] - A[e] * s.X[e] + (s.topLeft[e] ? 1 : 0);
-  }
-  const int64_t step = int64_t(1) << bits;
-  I64x8 lane64;
-  F32x8 laneF;
-  for (int i = 0; i < kSpan; ++i) lane64[i] = i, laneF[i] = float(i);
-  I64x8 stepE[3];
-  for (int e = 0; e < 3; ++e) stepE[e] = lane64 * (A[e] * step);
-  const F32x8 dadx = F32x8{} + s.z.dadx, a0 = F32x8{} + s.z.a0;
-  uint64_t prevRow = 0;    // coverage of the even row above, for the quad count
-  for (int py = y0; py <= y1; ++py) {
-    const int64_t PY = int64_t(py) << bits;
-    int64_t rowE[3];
-    for (int e = 0; e < 3; ++e) rowE[e] = A[e] * (int64_t(x0) << bits) - B[e] * PY + C[e];
-    float* depth = fb.depth.data() + size_t(py) * fb.width;
-    const F32x8 dady = F32x8{} + s.z.dady, fy = F32x8{} + float(py);
-    uint64_t rowMask = 0;
-    // Chunks of 8 pixels aligned to 8: inside one tile (tiles are 64-aligned), so a whole chunk is
-    // this thread's to load and store; pixels of a chunk outside the box are outside the triangle
-    // and stay uncovered. Only a chunk past the framebuffer's last column (width not a multiple
-    // of 8) is cut to its pixels.
-    const int cx0 = x0 & ~(kSpan - 1);  // coverage bit k of the row is pixel cx0 + k (even: quads pair bits 2j, 2j+1)
-    for (int e = 0; e < 3; ++e) rowE[e] -= int64_t(x0 - cx0) * A[e] * step;
-    for (int px = cx0; px <= x1; px += kSpan) {
-      const int n = std::min(kSpan, int(fb.width) - px);
-      const I64x8 e0 = rowE[0] + stepE[0], e1 = rowE[1] + stepE[1], e2 = rowE[2] + stepE[2];
-      for (int e = 0; e < 3; ++e) rowE[e] += kSpan * A[e] * step;
-      const I32x8 in = __builtin_convertvector((e0 > 0) & (e1 > 0) & (e2 > 0), I32x8);
-      const F32x8 fx = laneF + float(px);
-      F32x8 z;
-      if constexpr (Fused) {
-        for (int i = 0; i < kSpan; ++i) z[i] = __builtin_fmaf(dady[i], fy[i], __builtin_fmaf(dadx[i], fx[i], a0[i]));
-      } else {
-        z = dady * fy + (dadx * fx + a0);
+    int64_t lo = INT64_MAX, hi = INT64_MIN;
+    for (const int cx : {bx0, rx1})
+      for (const int cy : {by0, ry1}) {
+        const int64_t E = A[e] * (int64_t(cx) << bits) - B[e] * (int64_t(cy) << bits) + C[e];
+        lo = std::min(lo, E), hi = std::max(hi, E);
       }
-      F32x8 d;
-      if (n == kSpan) std::memcpy(&d, depth + px, sizeof d);
-      else for (int i = 0; i < kSpan; ++i) d[i] = i < n ? depth[px + i] : 0.0f;
-      const I32x8 live = in & (z <= d);
-      const F32x8 out = live ? z : d;
-      if (n == kSpan) std::memcpy(depth + px, &out, sizeof out);
-      else for (int i = 0; i < n; ++i) depth[px + i] = out[i];
-      const uint32_t lanes = (1u << n) - 1u;  // a triangle may cover pixels past the last column (guard band)
-      rowMask |= uint64_t(laneBits(in) & lanes) << (px - cx0);
-      frags += size_t(std::popcount(laneBits(live) & lanes));
-    }
-    // A quad row is complete at its odd row, or at the span's last row (the quad's other row then
-    // lies outside the box or the tile and is not covered).
-    const bool odd = (py & 1) != 0;
-    if (odd || py == y1) {
-      const uint64_t m = odd ? (prevRow | rowMask) : rowMask;
-      quads += size_t(std::popcount((m | (m >> 1)) & 0x5555555555555555ull));
-      prevRow = 0;
-    } else {
-      prevRow = rowMask;
-    }
+    if (hi <= 0) return;  // no pixel of the rectangle passes this edge
+    if (lo > 0) A[e] = 0, B[e] = 0, C[e] = 1;  // every pixel passes it
+    else narrow = narrow && lo >= INT32_MIN && hi <= INT32_MAX;
   }
+  if (narrow) depthOnlyBlocks<int32_t, Fused>(A, B, C, bits, s.z, bx0, by0, x1, y1, fb, quads, frags);
+  else depthOnlyBlocks<int64_t, Fused>(A, B, C, bits, s.z, bx0, by0, x1, y1, fb, quads, frags);
 }
 
 }  // namespace

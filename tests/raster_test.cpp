@@ -254,20 +254,23 @@ TEST(Raster, ClipperDiscardsNonFiniteAndOutsideTriangles) {
   EXPECT_EQ(st.fragments, 0u);
 }
 
-TEST(Raster, DepthOnlyRowPathEqualsTheQuadLoop) {
-  // A depth-only draw (no fragment shader) takes the 8-pixel row path; the same draw with a fragment
+TEST(Raster, DepthOnlyBlockPathEqualsTheQuadLoop) {
+  // A depth-only draw (no fragment shader) takes the 4x4 block path; the same draw with a fragment
   // shader that writes nothing (0 outputs) takes the quad loop. Depth buffers must be equal bit for
   // bit, and so must the counted quads and fragments: many seeds, target sizes that are and are not
-  // multiples of 8 and of the 64-pixel tile, overlapping triangles of every size (the depth test
+  // multiples of 4 and of the 64-pixel tile, overlapping triangles of every size (the depth test
   // in submission order), triangles crossing the target's edges, fused and separate plane equations.
-  const uint32_t sizes[][2] = {{64, 64}, {100, 37}, {257, 129}, {1024, 24}, {8, 300}, {3, 5}};
+  // The large triangles of the 1024-wide targets (edges up to ~700 pixels: |E| reaches 2^35 inside
+  // a tile) take the int64 lanes and, inside them, whole tiles of constant (accepted) edges; the
+  // small ones the int32 lanes.
+  const uint32_t sizes[][2] = {{64, 64}, {100, 37}, {257, 129}, {1024, 24}, {8, 300}, {3, 5}, {1024, 1024}, {130, 1023}};
   for (const int variant : {0, 1, 2}) {  // lavapipe (fused, draw-module clipper), separate mul + add, guard band
     const bool fused = variant != 1;
     emu::DeviceProfile p = dev();
     p.raster.interpFma = fused;
     if (variant == 2) p.raster.clip = emu::DeviceProfile::Raster::Clip::GuardBand;  // triangles reach past the edges
     for (uint32_t seed = 1; seed <= 24; ++seed) {
-      const uint32_t W = sizes[seed % 6][0], H = sizes[seed % 6][1];
+      const uint32_t W = sizes[seed % 8][0], H = sizes[seed % 8][1];
       std::mt19937 rng(seed);
       std::uniform_real_distribution<float> U(-0.3f, 1.3f), Z(0.0f, 1.0f);
       const size_t tris = 40 + seed * 7;
@@ -300,7 +303,7 @@ TEST(Raster, DepthOnlyRowPathEqualsTheQuadLoop) {
       for (size_t i = 0; i < a.depth.size() && firstDiff == a.depth.size(); ++i)
         if (std::memcmp(&a.depth[i], &b.depth[i], 4) != 0) firstDiff = i;
       ASSERT_EQ(firstDiff, a.depth.size()) << "seed " << seed << " variant " << variant << " " << W << "x" << H << ": pixel ("
-                                           << firstDiff % W << ", " << firstDiff / W << ") row path "
+                                           << firstDiff % W << ", " << firstDiff / W << ") block path "
                                            << a.depth[firstDiff % a.depth.size()] << ", quad loop " << b.depth[firstDiff % a.depth.size()];
       EXPECT_EQ(sa.fragments, sb.fragments) << seed;
       EXPECT_EQ(sa.quads, sb.quads) << seed;
