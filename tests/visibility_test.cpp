@@ -437,3 +437,34 @@ TEST(Visibility, ThinPlateAboveTheFloor) {
 }
 
 }  // namespace
+
+TEST(Visibility, FramePassesReportTheirImagesBytes) {
+  // visibilityEmu = the shadow maps, the fit and the filter of the stages run alone, and its stats
+  // count the bytes of what it allocated: K maps of size^2 floats, their array copy, 16 floats per
+  // pixel for the coefficients and again for the filter's output (none when the filter is off).
+  shadetwin::Scene scene = bunny();
+  scene.width = 96, scene.height = 64;
+  std::ostringstream quiet;
+  const shadetwin::EnvironmentMap env = shadetwin::loadEnvironment(scene.environment, quiet);
+  const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev());
+  for (const uint32_t radius : {0u, 2u}) {
+    shadetwin::VisibilitySettings s;
+    s.maps = 5;
+    s.size = 128;
+    s.filterRadius = radius;
+    const auto v = shadetwin::visibilitySetup(scene, *env.texture, s);
+    shadetwin::VisibilityStats st;
+    const shadetwin::VisibilityImage img = shadetwin::visibilityEmu(scene, g, v, dev(), &st);
+    const emu::Texture maps = shadetwin::shadowMapArray(shadetwin::shadowEmu(scene, v.directions, s.size, dev()));
+    const shadetwin::VisibilityImage alone =
+        shadetwin::visibilityFilterEmu(g, shadetwin::visibilityFitEmu(g, maps, v, dev()), v, dev());
+    ASSERT_EQ(img.coeffs.size(), alone.coeffs.size());
+    EXPECT_EQ(std::memcmp(img.coeffs.data(), alone.coeffs.data(), img.coeffs.size() * 4), 0) << radius;
+    EXPECT_EQ(st.mapBytes, size_t(5) * 128 * 128 * 4);
+    EXPECT_EQ(st.mapArrayBytes, size_t(5) * 128 * 128 * 4);
+    EXPECT_EQ(st.coeffBytes, size_t(96) * 64 * 64);
+    EXPECT_EQ(st.filteredBytes, radius ? size_t(96) * 64 * 64 : 0u);
+    EXPECT_GT(st.shadowMs, 0.0);
+    EXPECT_GT(st.fitMs, 0.0);
+  }
+}

@@ -28,7 +28,7 @@ namespace shadetwin {
 using Clock = std::chrono::steady_clock;
 
 namespace {
-void visibilityLines(std::ostream& passes, const char* build, const VisibilitySetup& v, const VisibilityTimes& t) {
+void visibilityLines(std::ostream& passes, const char* build, const VisibilitySetup& v, const VisibilityStats& t) {
   passes << "  shadow maps (" << build << ")       " << std::setw(8) << t.shadowMs << " ms  (" << v.settings.maps << " x "
          << v.settings.size << "^2, directions from the environment's luminance" << (v.uniformFallback ? ": none, uniform" : "")
          << ")\n";
@@ -37,6 +37,16 @@ void visibilityLines(std::ostream& passes, const char* build, const VisibilitySe
   if (v.settings.filterRadius)
     passes << "  visibility filter (" << build << ") " << std::setw(8) << t.filterMs << " ms  ("
            << (v.settings.filterEdgeAware ? "edge-aware" : "box") << ", radius " << v.settings.filterRadius << ")\n";
+  const auto mib = [](size_t b) { return double(b) / (1024.0 * 1024.0); };
+  const auto flags = passes.flags();
+  const auto prec = passes.precision();
+  passes << "  visibility memory (" << build << ")  " << std::setprecision(1) << std::fixed << mib(t.mapBytes)
+         << " MiB maps + " << mib(t.mapArrayBytes) << " MiB as the fit's array, " << mib(t.coeffBytes)
+         << " MiB coefficients" << (t.filteredBytes ? " + " : "");
+  if (t.filteredBytes) passes << mib(t.filteredBytes) << " MiB filtered";
+  passes << "\n";
+  passes.flags(flags);
+  passes.precision(prec);
 }
 
 // Output path of frame f: OUT itself for a single frame, else OUT's stem + _NNNN.
@@ -112,7 +122,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       if (drawGbuffer) g = gbufferEmu(scene, dev, &gs);
       const double tGbuf = msSince(t0);
       const ShadeInputs& in = cache.emu(scene, *env.texture, dev);
-      VisibilityTimes vt;
+      VisibilityStats vt;
       std::unique_ptr<VisibilityImage> vis;
       const std::shared_ptr<const VisibilitySetup> vsetup = frameVisibility(in, *env.texture);
       if (vsetup) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *vsetup, dev, &vt));
@@ -154,7 +164,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       if (cache.lastRebuilt() || rotated.texture) spass = std::make_unique<ShadePassVk>(*ctx, scene, in);
       const double tSetup = msSince(t0);
       if (drawGbuffer) g = gpass->run();
-      VisibilityTimes vt;
+      VisibilityStats vt;
       std::unique_ptr<VisibilityImage> vis;
       const std::shared_ptr<const VisibilitySetup> vsetup = frameVisibility(in, *env.texture);
       if (vsetup) {

@@ -233,7 +233,7 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
     for (uint32_t K : visMaps) {
       scene.visMaps = K;
       const ShadeInputs in = shadeInputsEmu(scene, *env.texture, *dev);
-      VisibilityTimes te, tv;
+      VisibilityStats te, tv;
       std::unique_ptr<VisibilityImage> vis;
       ImageMetrics mu{};
       if (in.visibility) {

@@ -36,12 +36,17 @@ VisibilityImage visibilityFilterEmu(const GBuffer& g, const VisibilityImage& in,
 emu::Texture visibilityCoeffTexture(const VisibilityImage& in);
 emu::Texture gbufferPositionNormalTexture(const GBuffer& g);
 
-struct VisibilityTimes {
+/// A frame's visibility passes: their times and the bytes of the images they write, as allocated:
+/// the K maps (D32F, as the shadow pass leaves them), the same maps as the R32F array the fit
+/// samples (a copy on both builds), the fit's coefficient image and the filter's output (16 floats
+/// per pixel each; 0 when the filter is off).
+struct VisibilityStats {
   double shadowMs = 0, fitMs = 0, filterMs = 0;
+  size_t mapBytes = 0, mapArrayBytes = 0, coeffBytes = 0, filteredBytes = 0;
 };
 /// A frame's visibility on one build: the K shadow maps of v's directions, then the fit of `g`.
 VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const VisibilitySetup& v, const emu::DeviceProfile& dev,
-                              VisibilityTimes* times = nullptr);
+                              VisibilityStats* times = nullptr);
 
 /// The same passes on a Vulkan device, built once (the shadow pass of `scene` at `mapSize`, the fit
 /// and filter kernels) and run every frame; a moved object needs a new one (the scene's geometry is
@@ -51,7 +56,7 @@ class VisibilityPassVk {
   VisibilityPassVk(vk::Context& ctx, const Scene& scene, uint32_t mapSize);
   ~VisibilityPassVk();
   /// The K maps of v's directions, then the fit and the filter of `g`.
-  VisibilityImage run(const GBuffer& g, const VisibilitySetup& v, VisibilityTimes* times = nullptr);
+  VisibilityImage run(const GBuffer& g, const VisibilitySetup& v, VisibilityStats* times = nullptr);
   /// The stages alone, on given inputs (verify visibility).
   VisibilityImage fit(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v);
   VisibilityImage filter(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v);

@@ -99,14 +99,20 @@ VisibilityImage visibilityFilterEmu(const GBuffer& g, const VisibilityImage& in,
 }
 
 VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const VisibilitySetup& v, const emu::DeviceProfile& dev,
-                              VisibilityTimes* times) {
-  VisibilityTimes t;
+                              VisibilityStats* times) {
+  VisibilityStats t;
   ShadowMaps sm;
   t.shadowMs = timeMs([&] { shadowEmu(scene, v.directions, v.settings.size, dev, sm); });
   const emu::Texture maps = shadowMapArray(sm);
+  for (const auto& m : sm.maps) t.mapBytes += m.size() * sizeof(float);
+  for (const auto& l : maps.levels()) t.mapArrayBytes += l.size();
   VisibilityImage img;
   t.fitMs = timeMs([&] { img = visibilityFitEmu(g, maps, v, dev); });
-  t.filterMs = timeMs([&] { img = visibilityFilterEmu(g, img, v, dev); });
+  t.coeffBytes = img.coeffs.size() * sizeof(float);
+  if (v.settings.filterRadius) {
+    t.filterMs = timeMs([&] { img = visibilityFilterEmu(g, img, v, dev); });
+    t.filteredBytes = img.coeffs.size() * sizeof(float);
+  }
   if (times) *times = t;
   return img;
 }

@@ -83,13 +83,20 @@ VisibilityImage VisibilityPassVk::filter(const GBuffer& g, const VisibilityImage
   return readBack(out, in.width, in.height);
 }
 
-VisibilityImage VisibilityPassVk::run(const GBuffer& g, const VisibilitySetup& v, VisibilityTimes* times) {
-  VisibilityTimes t;
-  const emu::Texture maps = shadowMapArray(impl_->shadow.run(v.directions));  // maps read back, uploaded as one array
+VisibilityImage VisibilityPassVk::run(const GBuffer& g, const VisibilitySetup& v, VisibilityStats* times) {
+  VisibilityStats t;
+  const ShadowMaps sm = impl_->shadow.run(v.directions);
+  const emu::Texture maps = shadowMapArray(sm);  // maps read back, uploaded as one array
   t.shadowMs = impl_->shadow.lastMs;
+  for (const auto& mp : sm.maps) t.mapBytes += mp.size() * sizeof(float);
+  for (const auto& l : maps.levels()) t.mapArrayBytes += l.size();
   VisibilityImage img;
   t.fitMs = timeMs([&] { img = fit(g, maps, v); });
-  t.filterMs = timeMs([&] { img = filter(g, img, v); });
+  t.coeffBytes = size_t(g.width) * g.height * 64;  // the fit's storage buffer
+  if (v.settings.filterRadius) {
+    t.filterMs = timeMs([&] { img = filter(g, img, v); });
+    t.filteredBytes = size_t(g.width) * g.height * 64;  // the filter's storage buffer
+  }
   if (times) *times = t;
   return img;
 }
