@@ -468,3 +468,54 @@ TEST(Visibility, FramePassesReportTheirImagesBytes) {
     EXPECT_GT(st.fitMs, 0.0);
   }
 }
+
+TEST(Visibility, ConstantEnvironmentSpreadsDirectionsOverTheSphere) {
+  // A constant environment: luminance x sin(theta) is uniform in solid angle, so the K directions
+  // cover the sphere, about half of them below the horizon (they still count: V max(0, n.w) = 0
+  // there for an upward normal), and the normal matrix has full rank once K >= 16.
+  const shadetwin::Scene scene = bunny();
+  std::vector<float> one(64 * 32 * 4, 1.0f);
+  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, 64, 32, one.data());
+  for (uint32_t K : {16u, 64u, 256u}) {
+    shadetwin::VisibilitySettings s;
+    s.maps = K;
+    s.size = 4096;
+    const auto v = shadetwin::visibilitySetup(scene, env, s);
+    EXPECT_FALSE(v.uniformFallback);
+    EXPECT_EQ(v.rank, 16u) << K;
+    size_t below = 0;
+    double mean[3] = {0, 0, 0};
+    for (const Vec3& d : v.directions) {
+      below += d[1] < 0.0f;
+      for (int k = 0; k < 3; ++k) mean[k] += double(d[size_t(k)]) / K;
+    }
+    EXPECT_GT(double(below), 0.3 * K) << K;
+    EXPECT_LT(double(below), 0.7 * K) << K;
+    for (double m : mean) EXPECT_LT(std::fabs(m), K >= 64 ? 0.1 : 0.25) << K;  // no preferred side
+    // A pixel whose every direction is blocked: after the documented clamps the glossy visibility is
+    // in [0, 1] for every direction and 0 along the normal, and the diffuse term under a constant
+    // radiance 1 (L = 2 sqrt(pi) Y00, E = pi) is in [0, E] and near 0: no negative radiance from
+    // the truncated series' ringing.
+    namespace sc = shadetwin::shade::scalar;
+    using F3 = shadetwin::shade::V3<float>;
+    const F3 n(0, 1, 0);
+    const sc::Sh16 c = fitPoint(v, uniformMaps(K, 16, 0.0f), {0, 0.2f, 0}, {0, 1, 0});
+    for (float x : flat(c)) EXPECT_TRUE(std::isfinite(x)) << K;
+    std::mt19937 rng(K);
+    std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+    for (int i = 0; i < 500; ++i) {
+      float w[3] = {U(rng), std::fabs(U(rng)) + 1e-3f, U(rng)};
+      const float l = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      const float at = sc::visAt(sc::kFisVisCos, c, n, F3(w[0] / l, w[1] / l, w[2] / l));
+      EXPECT_GE(at, 0.0f);
+      EXPECT_LE(at, 1.0f);
+    }
+    EXPECT_EQ(sc::visAt(sc::kFisVisCos, c, n, n), 0.0f) << K;
+    const float l00 = 2.0f * std::sqrt(float(std::numbers::pi)), E = float(std::numbers::pi);
+    const sc::Sh16 L0{sc::Float4(l00, 0, 0, 0), sc::Float4(0.0f), sc::Float4(0.0f), sc::Float4(0.0f)};
+    const F3 e = sc::visIrradiance(sc::kFisVisCos, sc::VisLighting{L0, L0, L0}, c, F3(E, E, E), n);
+    EXPECT_GE(e.x, 0.0f) << K;
+    EXPECT_LE(e.x, 0.1f * E) << K;
+    for (float x : flat(fitPoint(v, uniformMaps(K, 16, 0.5f), {0, 0.2f, 0}, {0, 1, 0}))) EXPECT_TRUE(std::isfinite(x));
+  }
+}
