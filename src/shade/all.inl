@@ -9,6 +9,7 @@
 #include "shade/gbuffer.h"
 #include "shade/material.h"
 #include "shade/shadow.h"
+#include "shade/ndf_histogram.h"
 #include "shade/sh16.h"
 #include "shade/visibility.h"
 #include "shade/shade_mirror.h"
