@@ -10,6 +10,7 @@
 #include "shade/material.h"
 #include "shade/shadow.h"
 #include "shade/ndf_histogram.h"
+#include "shade/sh_legendre.h"
 #include "shade/sh16.h"
 #include "shade/visibility.h"
 #include "shade/shade_mirror.h"
