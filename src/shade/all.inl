@@ -11,6 +11,7 @@
 #include "shade/shadow.h"
 #include "shade/ndf_histogram.h"
 #include "shade/sh_legendre.h"
+#include "shade/glints.h"
 #include "shade/sh16.h"
 #include "shade/visibility.h"
 #include "shade/shade_mirror.h"
