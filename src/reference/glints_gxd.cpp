@@ -1,0 +1,198 @@
+#include "reference/glints_gxd.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace shadetwin {
+
+using reference::D3;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+struct Span {
+  int64_t lo, hi, mult;
+};
+// The map ranges the unrolled range [a, b] covers on an axis of size n, with multiplicities.
+int spans(int64_t a, int64_t b, int64_t n, Span out[3]) {
+  const int64_t len = b - a + 1, s = ((a % n) + n) % n, head = std::min(len, n - s);
+  int k = 0;
+  out[k++] = {s, s + head - 1, 1};
+  const int64_t rest = len - head;
+  if (rest / n) out[k++] = {0, n - 1, rest / n};
+  if (rest % n) out[k++] = {0, rest % n - 1, 1};
+  return k;
+}
+
+double fresnelConductor(double c, double n, double k) {
+  c = std::clamp(c, 0.0, 1.0);
+  const double c2 = c * c, s2 = 1 - c2, t0 = n * n - k * k - s2, a2b2 = std::sqrt(t0 * t0 + 4 * n * n * k * k);
+  const double a = std::sqrt(std::max(0.0, 0.5 * (a2b2 + t0))), t1 = a2b2 + c2, t2 = 2 * a * c, rs = (t1 - t2) / (t1 + t2);
+  const double t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2, rp = rs * (t3 - t4) / (t3 + t4);
+  return 0.5 * (rs + rp);
+}
+
+// Smith's Beckmann masking, exact: 2 / (1 + erf(a) + exp(-a^2) / (a sqrt(pi))), a = cot / alpha.
+double smithG1(double c, double alpha) {
+  if (c <= 0) return 0.0;
+  const double s = std::sqrt(std::max(0.0, 1 - c * c));
+  if (s == 0) return 1.0;
+  const double a = c / (alpha * s);
+  if (a > 30) return 1.0;
+  return 2.0 / (1.0 + std::erf(a) + std::exp(-a * a) / (a * std::sqrt(kPi)));
+}
+
+D3 toTangent(const GlintPixel& px, D3 w) { return {dot(w, px.t), dot(w, px.b), dot(w, px.n)}; }
+D3 toWorld(const GlintPixel& px, D3 v) { return px.t * v.x + px.b * v.y + px.n * v.z; }
+
+}  // namespace
+
+NormalBounds normalBounds(const NormalMap& map) {
+  NormalBounds nb;
+  nb.width = map.width, nb.height = map.height;
+  const uint32_t sizes[2] = {8, 64};
+  for (int L = 0; L < 2; ++L) {
+    auto& lv = nb.level[L];
+    lv.block = sizes[L];
+    lv.bw = (map.width + lv.block - 1) / lv.block, lv.bh = (map.height + lv.block - 1) / lv.block;
+    lv.lo.assign(size_t(lv.bw) * lv.bh * 3, 2.0f);
+    lv.hi.assign(size_t(lv.bw) * lv.bh * 3, -2.0f);
+    for (uint32_t y = 0; y < map.height; ++y)
+      for (uint32_t x = 0; x < map.width; ++x) {
+        const size_t b = size_t(y / lv.block) * lv.bw + x / lv.block;
+        for (int c = 0; c < 3; ++c) {
+          lv.lo[3 * b + c] = std::min(lv.lo[3 * b + c], map.at(x, y)[c]);
+          lv.hi[3 * b + c] = std::max(lv.hi[3 * b + c], map.at(x, y)[c]);
+        }
+      }
+  }
+  return nb;
+}
+
+double glintLobeNorm(double sigma) {
+  const double s2 = sigma * sigma;
+  return 2 * kPi * s2 * -std::expm1(-2.0 / s2);
+}
+
+double glintFootprintNdf(const GlintPixel& px, D3 h, uint64_t* lobes) {
+  const NormalMap& m = *px.map;
+  const D3 ht = toTangent(px, h);
+  const double inv = 1.0 / (px.sigma * px.sigma), thr = 1.0 - 40.0 * px.sigma * px.sigma;
+  auto bound = [&](const std::vector<float>& lo, const std::vector<float>& hi, size_t b) {
+    const double c[3] = {ht.x, ht.y, ht.z};
+    double d = 0;
+    for (int k = 0; k < 3; ++k) d += std::max(c[k] * lo[3 * b + k], c[k] * hi[3 * b + k]);
+    return d;  // no normal of the block has a larger dot with h
+  };
+  Span xs[3], ys[3];
+  const int nx = spans(px.x0, px.x1, m.width, xs), ny = spans(px.y0, px.y1, m.height, ys);
+  double acc = 0;
+  uint64_t count = 0;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const Span &sx = xs[i], &sy = ys[j];
+      double part = 0;
+      auto texels = [&](int64_t xa, int64_t xb, int64_t ya, int64_t yb) {
+        for (int64_t y = ya; y <= yb; ++y)
+          for (int64_t x = xa; x <= xb; ++x) {
+            const float* n = m.at(uint32_t(x), uint32_t(y));
+            const double d = ht.x * n[0] + ht.y * n[1] + ht.z * n[2];
+            ++count;
+            if (d < thr) continue;
+            part += std::exp((d - 1.0) * inv);
+          }
+      };
+      if (!px.bounds) {
+        texels(sx.lo, sx.hi, sy.lo, sy.hi);
+      } else {
+        const auto &L1 = px.bounds->level[1], &L0 = px.bounds->level[0];
+        for (int64_t by = sy.lo / L1.block; by <= sy.hi / L1.block; ++by)
+          for (int64_t bx = sx.lo / L1.block; bx <= sx.hi / L1.block; ++bx) {
+            if (bound(L1.lo, L1.hi, size_t(by) * L1.bw + size_t(bx)) < thr) continue;
+            const int64_t ya = std::max(sy.lo, by * L1.block), yb = std::min(sy.hi, by * L1.block + L1.block - 1);
+            const int64_t xa = std::max(sx.lo, bx * L1.block), xb = std::min(sx.hi, bx * L1.block + L1.block - 1);
+            for (int64_t cy = ya / L0.block; cy <= yb / L0.block; ++cy)
+              for (int64_t cx = xa / L0.block; cx <= xb / L0.block; ++cx) {
+                if (bound(L0.lo, L0.hi, size_t(cy) * L0.bw + size_t(cx)) < thr) continue;
+                texels(std::max(xa, cx * L0.block), std::min(xb, cx * L0.block + L0.block - 1), std::max(ya, cy * L0.block),
+                       std::min(yb, cy * L0.block + L0.block - 1));
+              }
+          }
+      }
+      acc += part * double(sx.mult * sy.mult);
+    }
+  if (lobes) *lobes += count;
+  const double area = double(px.x1 - px.x0 + 1) * double(px.y1 - px.y0 + 1);
+  return acc / (area * glintLobeNorm(px.sigma));
+}
+
+GxdResult glintGxd(const GlintPixel& px, const reference::Environment& env, uint32_t samples, uint64_t seed) {
+  if (!px.map || px.x1 < px.x0 || px.y1 < px.y0 || samples == 0) throw std::invalid_argument("glintGxd: empty footprint or no samples");
+  const double cosO = dot(px.wo, px.n);
+  GxdResult r;
+  if (cosO <= 0) return r;
+  const double alpha = std::sqrt(2.0) * px.sigma, lambda = 1.0 / (px.sigma * px.sigma);
+  const D3 refl = px.n * (2 * cosO) - px.wo;
+  double fgOut[3];
+  for (int c = 0; c < 3; ++c) fgOut[c] = fresnelConductor(cosO, px.eta[c], px.k[c]) * smithG1(cosO, alpha) * smithG1(dot(refl, px.n), alpha);
+  const int64_t w = px.x1 - px.x0 + 1, h = px.y1 - px.y0 + 1;
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+  // f cos / (pA + pB) L for one direction wi (0 below the macro surface).
+  auto contribution = [&](D3 wi, double pA, double out[3]) {
+    out[0] = out[1] = out[2] = 0;
+    const double cosI = dot(wi, px.n);
+    if (cosI <= 0) return;
+    const D3 hv = normalize(px.wo + wi);
+    const double oh = dot(px.wo, hv);
+    if (oh <= 0) return;
+    const double D = glintFootprintNdf(px, hv, &r.texelLobes);
+    const double pB = D / (4 * oh);
+    if (pA + pB <= 0) return;
+    double L[3];
+    env.radiance(wi, L);
+    for (int c = 0; c < 3; ++c) {
+      const double fg = px.fgOutside ? fgOut[c]
+                                     : fresnelConductor(dot(wi, hv), px.eta[c], px.k[c]) * smithG1(cosO, alpha) * smithG1(cosI, alpha);
+      out[c] = L[c] * fg * D / (4 * cosO) / (pA + pB);
+    }
+  };
+  for (uint32_t s = 0; s < samples; ++s) {
+    reference::Rng rng(seed, px.pixel, s);
+    double pair[3] = {0, 0, 0}, v[3];
+    // Environment strategy.
+    const double e0 = rng.next(), e1 = rng.next(), e2 = rng.next(), e3 = rng.next();
+    const D3 wa = env.sample(e0, e1, e2, e3);
+    contribution(wa, env.pdf(wa), v);
+    for (int c = 0; c < 3; ++c) pair[c] += v[c];
+    // NDF strategy: a texel of the footprint, h from its lobe, wi the reflection.
+    const int64_t tx = px.x0 + std::min(w - 1, int64_t(rng.next() * double(w)));
+    const int64_t ty = px.y0 + std::min(h - 1, int64_t(rng.next() * double(h)));
+    const float* nt = px.map->at(uint32_t(((tx % px.map->width) + px.map->width) % px.map->width),
+                                 uint32_t(((ty % px.map->height) + px.map->height) % px.map->height));
+    const double u1 = rng.next(), u2 = rng.next();
+    const double ct = std::clamp(1.0 + std::log1p(-u1 * -std::expm1(-2 * lambda)) / lambda, -1.0, 1.0);
+    const double st = std::sqrt(std::max(0.0, 1 - ct * ct)), phi = 2 * kPi * u2;
+    const D3 nn = normalize(D3{nt[0], nt[1], nt[2]});
+    const D3 helper = std::fabs(nn.x) < 0.9 ? D3{1, 0, 0} : D3{0, 1, 0};
+    const D3 e1t = normalize(cross(helper, nn)), e2t = cross(nn, e1t);
+    const D3 hb = toWorld(px, e1t * (st * std::cos(phi)) + e2t * (st * std::sin(phi)) + nn * ct);
+    const double oh = dot(px.wo, hb);
+    if (oh > 0) {
+      const D3 wb = hb * (2 * oh) - px.wo;
+      contribution(wb, env.pdf(wb), v);
+      for (int c = 0; c < 3; ++c) pair[c] += v[c];
+    }
+    for (int c = 0; c < 3; ++c) sum[c] += pair[c], sum2[c] += pair[c] * pair[c];
+  }
+  for (int c = 0; c < 3; ++c) {
+    r.rgb[c] = sum[c] / samples;
+    const double var = std::max(0.0, sum2[c] / samples - r.rgb[c] * r.rgb[c]);
+    r.stdErr[c] = std::sqrt(var / samples);
+  }
+  return r;
+}
+
+}  // namespace shadetwin

@@ -1,0 +1,69 @@
+// The glints ground truth, "G x D" (issue 17; Gamboa et al. 2018 §3.1-3.2): brute force over every
+// texel of a pixel's footprint, integrated over the whole environment by Monte Carlo.
+//
+// Model (docs/DESIGN.md §12): texel t of the footprint P is a patch with micro-normal n_t (tangent
+// space) and a Gaussian lobe g_sigma(w; n) = exp((w.n - 1) / sigma^2) / N(sigma); the footprint's
+// NDF is D_P(h) = (1/|P|) sum_t g_sigma(h; n_t). The BRDF is the microfacet one,
+//   f(wo, wi) = F(wi.h) G1(wo) G1(wi) D_P(h) / (4 cos_o cos_i),  h = normalize(wo + wi),
+// F the conductor's Fresnel (complex IOR per channel), G1 Smith's Beckmann masking with alpha =
+// sqrt(2) sigma about the macro normal. With `fgOutside` the F G factor is taken at the macro normal
+// (F(wo.n) G1(wo) G1(reflect(wo, n))) and out of the integral: the technique's model, so a
+// comparison isolates its SH and binning errors.
+//
+// Estimator: per sample one environment direction (the reference renderer's sampler) and one NDF
+// direction (a texel of P uniformly, h from its lobe exactly, wi = reflect(wo about h)), balance
+// heuristic. D_P(h) is summed over P's texels, skipping any block of a min-max hierarchy of the
+// map's normals (8 x 8 and 64 x 64 texels) whose normals all lie farther from h than
+// 1 - h.n > 40 sigma^2 (their lobes are below e^-40 of the peak there). Random numbers depend only
+// on (seed, pixel, sample).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "inputs/normal_map.h"
+#include "reference/ref_environment.h"
+#include "reference/reference_brdf.h"
+
+namespace shadetwin {
+
+/// Per-block bounds of a map's normals: for 8 x 8 and 64 x 64 blocks, min and max of each
+/// component (tangent space).
+struct NormalBounds {
+  uint32_t width = 0, height = 0;
+  struct Level {
+    uint32_t block, bw, bh;
+    std::vector<float> lo, hi;  // 3 per block
+  };
+  Level level[2];
+};
+NormalBounds normalBounds(const NormalMap& map);
+
+struct GlintPixel {
+  const NormalMap* map = nullptr;
+  const NormalBounds* bounds = nullptr;  // optional: no pruning without it
+  int64_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // footprint texels, inclusive, unwrapped (the map tiles)
+  reference::D3 t{1, 0, 0}, b{0, 1, 0}, n{0, 0, 1};  // tangent frame, world space, orthonormal
+  reference::D3 wo{0, 0, 1};                         // towards the viewer, unit
+  double sigma = 0.05;
+  double eta[3] = {0.143, 0.374, 1.442}, k[3] = {3.983, 2.385, 1.603};  // gold
+  bool fgOutside = false;
+  uint64_t pixel = 0;  // for the random numbers
+};
+
+struct GxdResult {
+  double rgb[3] = {0, 0, 0};
+  double stdErr[3] = {0, 0, 0};  // of the mean
+  uint64_t texelLobes = 0;       // texels visited (their normal tested against h) after the hierarchy's pruning
+};
+
+/// L_o towards wo, `samples` MIS sample pairs.
+GxdResult glintGxd(const GlintPixel& px, const reference::Environment& env, uint32_t samples, uint64_t seed);
+
+/// D_P(h) for h in world space (the footprint's NDF; what the estimator sums); adds the texels
+/// visited (not pruned by the hierarchy) to *lobes.
+double glintFootprintNdf(const GlintPixel& px, reference::D3 h, uint64_t* lobes = nullptr);
+
+/// The Gaussian lobe's normalisation N(sigma) = 2 pi sigma^2 (1 - exp(-2 / sigma^2)).
+double glintLobeNorm(double sigma);
+
+}  // namespace shadetwin
