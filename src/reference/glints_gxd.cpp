@@ -72,6 +72,15 @@ NormalBounds normalBounds(const NormalMap& map) {
   return nb;
 }
 
+std::array<double, 3> glintFgOutside(const GlintPixel& px) {
+  const double cosO = dot(px.wo, px.n), alpha = std::sqrt(2.0) * px.sigma;
+  const D3 refl = px.n * (2 * cosO) - px.wo;
+  std::array<double, 3> fg{};
+  for (int c = 0; c < 3; ++c)
+    fg[size_t(c)] = fresnelConductor(cosO, px.eta[c], px.k[c]) * smithG1(cosO, alpha) * smithG1(dot(refl, px.n), alpha);
+  return fg;
+}
+
 double glintLobeNorm(double sigma) {
   const double s2 = sigma * sigma;
   return 2 * kPi * s2 * -std::expm1(-2.0 / s2);
@@ -135,9 +144,7 @@ GxdResult glintGxd(const GlintPixel& px, const reference::Environment& env, uint
   GxdResult r;
   if (cosO <= 0) return r;
   const double alpha = std::sqrt(2.0) * px.sigma, lambda = 1.0 / (px.sigma * px.sigma);
-  const D3 refl = px.n * (2 * cosO) - px.wo;
-  double fgOut[3];
-  for (int c = 0; c < 3; ++c) fgOut[c] = fresnelConductor(cosO, px.eta[c], px.k[c]) * smithG1(cosO, alpha) * smithG1(dot(refl, px.n), alpha);
+  const std::array<double, 3> fgOut = glintFgOutside(px);
   const int64_t w = px.x1 - px.x0 + 1, h = px.y1 - px.y0 + 1;
   double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
   // f cos / (pA + pB) L for one direction wi (0 below the macro surface).
@@ -154,7 +161,7 @@ GxdResult glintGxd(const GlintPixel& px, const reference::Environment& env, uint
     double L[3];
     env.radiance(wi, L);
     for (int c = 0; c < 3; ++c) {
-      const double fg = px.fgOutside ? fgOut[c]
+      const double fg = px.fgOutside ? fgOut[size_t(c)]
                                      : fresnelConductor(dot(wi, hv), px.eta[c], px.k[c]) * smithG1(cosO, alpha) * smithG1(cosI, alpha);
       out[c] = L[c] * fg * D / (4 * cosO) / (pA + pB);
     }

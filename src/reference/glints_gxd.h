@@ -17,6 +17,7 @@
 // 1 - h.n > 40 sigma^2 (their lobes are below e^-40 of the peak there). Random numbers depend only
 // on (seed, pixel, sample).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -62,6 +63,10 @@ GxdResult glintGxd(const GlintPixel& px, const reference::Environment& env, uint
 /// D_P(h) for h in world space (the footprint's NDF; what the estimator sums); adds the texels
 /// visited (not pruned by the hierarchy) to *lobes.
 double glintFootprintNdf(const GlintPixel& px, reference::D3 h, uint64_t* lobes = nullptr);
+
+/// The F G factor at the macro normal, per channel: F(wo.n) G1(wo) G1(reflect(wo, n)) (exact
+/// Beckmann masking, alpha = sqrt(2) sigma); what `fgOutside` multiplies by.
+std::array<double, 3> glintFgOutside(const GlintPixel& px);
 
 /// The Gaussian lobe's normalisation N(sigma) = 2 pi sigma^2 (1 - exp(-2 / sigma^2)).
 double glintLobeNorm(double sigma);
