@@ -145,6 +145,15 @@ V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::
   const V4<emu::F32<N>> r = texelFetchLanes(s, x.x, y.x, level, layer.x);
   return V4<opcount::F<N>>(opcount::F<N>(r.x), opcount::F<N>(r.y), opcount::F<N>(r.z), opcount::F<N>(r.w));
 }
+template <int N>
+void uintFetchLanes(const USampler2DArray& s, opcount::I<N> x, opcount::I<N> y, opcount::I<N> layer, int level, opcount::U<N>& a,
+                    opcount::U<N>& b, opcount::U<N>& c, opcount::U<N>& d) {
+  opcount::tick(opcount::kTexLookup, N);
+  opcount::tick(opcount::kTexel, N);
+  emu::U32<N> ra, rb, rc, rd;
+  uintFetchLanes(s, x.x, y.x, layer.x, level, ra, rb, rc, rd);
+  a.x = ra, b.x = rb, c.x = rc, d.x = rd;
+}
 }  // namespace shadetwin::shade
 
 // The counted build counts the portable recurrences (what a GPU runs), not the emulator's native

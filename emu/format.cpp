@@ -8,7 +8,7 @@
 namespace emu {
 
 const FormatInfo& formatInfo(Format f) {
-  static const FormatInfo infos[] = {{"rgba32f", 16, 4}, {"rgba16f", 8, 4}, {"rgba8", 4, 4}, {"r32f", 4, 1}};
+  static const FormatInfo infos[] = {{"rgba32f", 16, 4}, {"rgba16f", 8, 4}, {"rgba8", 4, 4}, {"r32f", 4, 1}, {"rgba32ui", 16, 4}};
   return infos[static_cast<int>(f)];
 }
 
@@ -17,7 +17,8 @@ Format parseFormat(std::string_view name) {
   for (auto& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
   for (Format f : kAllFormats)
     if (s == formatInfo(f).name) return f;
-  throw std::invalid_argument("unknown texture format '" + std::string(name) + "' (expected rgba32f, rgba16f, rgba8 or r32f)");
+  if (s == formatInfo(Format::RGBA32UI).name) return Format::RGBA32UI;
+  throw std::invalid_argument("unknown texture format '" + std::string(name) + "' (expected rgba32f, rgba16f, rgba8, r32f or rgba32ui)");
 }
 
 float halfToFloat(uint16_t h) {

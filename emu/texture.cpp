@@ -53,6 +53,7 @@ Texel4 Texture::loadFloat(uint32_t level, uint32_t layer, uint32_t x, uint32_t y
     }
     case Format::RGBA8_UNORM: t = {unorm8ToFloat(p[0]), unorm8ToFloat(p[1]), unorm8ToFloat(p[2]), unorm8ToFloat(p[3])}; break;
     case Format::R32F: std::memcpy(&t.r, p, 4); t.g = 0.0f; t.b = 0.0f; t.a = 1.0f; break;
+    case Format::RGBA32UI: throw std::logic_error("texture: an RGBA32UI texture is read with loadUint (texelFetch of a usampler), not as floats");
   }
   return t;
 }

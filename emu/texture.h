@@ -1,6 +1,7 @@
 // Texture objects of the emulated GPU: 2D arrays with a MIP chain in one of the emulated formats.
 #pragma once
 #include <array>
+#include <cstring>
 #include <cstdint>
 #include <vector>
 
@@ -35,6 +36,12 @@ class Texture {
   /// The texel as the float path sees it: f32 as is, f16 exactly widened, unorm8 as byte * (1/255),
   /// R32F as (r, 0, 0, 1).
   Texel4 loadFloat(uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const;
+  /// The texel of an integer format (RGBA32UI) as its four 32-bit values, exactly.
+  std::array<uint32_t, 4> loadUint(uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const {
+    std::array<uint32_t, 4> v;
+    std::memcpy(v.data(), texelPtr(level, layer, x, y), 16);
+    return v;
+  }
   std::array<uint8_t, 4> loadBytes(uint32_t level, uint32_t layer, uint32_t x, uint32_t y) const {
     const uint8_t* p = texelPtr(level, layer, x, y);
     return {p[0], p[1], p[2], p[3]};

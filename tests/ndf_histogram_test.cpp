@@ -7,6 +7,7 @@
 
 #include "inputs/ndf_histogram.h"
 #include "inputs/normal_map.h"
+#include "lanes/instantiate.h"
 
 using shadetwin::NdfBinningSpec;
 using shadetwin::NormalMap;
@@ -157,4 +158,52 @@ TEST(NdfHistogram, StoresOnlyUsedRingsAndFailsEarlyWhenTooLarge) {
   bad = NdfBinningSpec{};
   bad.thetaMax = 4.0f;
   EXPECT_THROW(shadetwin::buildNdfSat(m, bad), std::invalid_argument);
+}
+
+TEST(NdfHistogram, SharedBoxCountsFromTheTextureEqualTheHost) {
+  // The shaders' lookup (shade/ndf_histogram.h ndfBoxCounts8 on the RGBA32UI texture), scalar and
+  // 8-lane builds, against the host's counts: maps of several sizes (smaller than a box, so whole
+  // periods occur), boxes anywhere, 6 bins per sector group padded (P = 12: groups 2, sectors 12-15 0).
+  namespace sc = shadetwin::shade::scalar;
+  namespace x8 = shadetwin::shade::x8;
+  std::mt19937 rng(17);
+  for (uint32_t seed = 1; seed <= 4; ++seed) {
+    const uint32_t size = seed == 1 ? 13 : 40 * seed;
+    const NormalMap m = gen(NormalMapKind::Bumps, size, seed, 0.45f);
+    NdfBinningSpec b;
+    if (seed == 2) b.rings = 5, b.sectors = 12, b.thetaMax = 0.9f;
+    const shadetwin::NdfSat sat = shadetwin::buildNdfSat(m, b);
+    const emu::Texture tex = shadetwin::ndfSatTexture(sat);
+    const shadetwin::shade::USampler2DArray s{&tex};
+    const int groups = int(shadetwin::ndfSatGroups(b));
+    ASSERT_EQ(tex.width(), size * uint32_t(groups));
+    const float invW = 1.0f / float(size), invH = 1.0f / float(size);
+    std::uniform_int_distribution<int> pos(-3000, 3000), side(1, 255);
+    std::vector<uint32_t> host(size_t(b.rings) * b.sectors);
+    for (int i = 0; i < 64; ++i) {
+      int x0[8], y0[8], x1[8], y1[8];
+      for (int l = 0; l < 8; ++l) x0[l] = pos(rng), y0[l] = pos(rng), x1[l] = x0[l] + side(rng) - 1, y1[l] = y0[l] + side(rng) - 1;
+      emu::I32<8> X0, Y0, X1, Y1;
+      for (int l = 0; l < 8; ++l) X0.set(l, x0[l]), Y0.set(l, y0[l]), X1.set(l, x1[l]), Y1.set(l, y1[l]);
+      for (uint32_t t = 0; t < b.rings; ++t) {
+        if (sat.slot[t] < 0) continue;
+        for (int g = 0; g < groups; ++g) {
+          const x8::UintTexel4 v8 = x8::ndfBoxCounts8(s, sat.slot[t], g, groups, int(size), int(size), invW, invH, X0, Y0, X1, Y1);
+          for (int l = 0; l < 8; ++l) {
+            shadetwin::ndfBoxCounts(sat, x0[l], y0[l], x1[l], y1[l], host.data());
+            const sc::UintTexel4 v = sc::ndfBoxCounts8(s, sat.slot[t], g, groups, int(size), int(size), invW, invH, x0[l], y0[l], x1[l], y1[l]);
+            const uint32_t packed[4] = {v.x, v.y, v.z, v.w}, lanes[4] = {v8.x[l], v8.y[l], v8.z[l], v8.w[l]};
+            for (int j = 0; j < 4; ++j) {
+              ASSERT_EQ(packed[j], lanes[j]) << seed << " " << i << " lane " << l;
+              for (int h = 0; h < 2; ++h) {
+                const uint32_t p = uint32_t(g) * 8 + uint32_t(2 * j + h);
+                const uint32_t want = p < b.sectors ? host[size_t(t) * b.sectors + p] : 0u;
+                ASSERT_EQ((packed[j] >> (16 * h)) & 0xffffu, want) << "seed " << seed << " box " << i << " ring " << t << " sector " << p;
+              }
+            }
+          }
+        }
+      }
+    }
+  }
 }

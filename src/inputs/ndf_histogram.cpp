@@ -137,4 +137,22 @@ void ndfBoxCounts(const NdfSat& sat, int64_t x0, int64_t y0, int64_t x1, int64_t
     for (uint32_t p = 0; p < P; ++p) out[size_t(t) * P + p] = sat.slot[t] < 0 ? 0u : acc[size_t(sat.slot[t]) * P + p];
 }
 
+emu::Texture ndfSatTexture(const NdfSat& sat) {
+  const uint32_t P = sat.bins.sectors, G = ndfSatGroups(sat.bins), layers = std::max(1u, sat.storedRings);
+  const uint32_t tw = sat.width * G;
+  std::vector<std::vector<uint8_t>> level(1, std::vector<uint8_t>(size_t(tw) * sat.height * layers * 16, 0));
+  uint32_t* out = reinterpret_cast<uint32_t*>(level[0].data());
+  const size_t row = size_t(sat.storedRings) * P;
+  for (uint32_t r = 0; r < sat.storedRings; ++r)
+    for (uint32_t y = 0; y < sat.height; ++y)
+      for (uint32_t x = 0; x < sat.width; ++x) {
+        const uint16_t* v = &sat.table[(size_t(y) * sat.width + x) * row + size_t(r) * P];
+        for (uint32_t p = 0; p < P; ++p) {
+          const uint32_t g = p / 8, j = (p % 8) / 2, shift = 16 * (p % 2);
+          out[((size_t(r) * sat.height + y) * tw + size_t(x) * G + g) * 4 + j] |= uint32_t(v[p]) << shift;
+        }
+      }
+  return emu::Texture(emu::Format::RGBA32UI, tw, sat.height, layers, std::move(level));
+}
+
 }  // namespace shadetwin

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "emu/texture.h"
 #include "inputs/normal_map.h"
 
 namespace shadetwin {
@@ -59,5 +60,12 @@ uint32_t ndfBinOf(const NdfBinningSpec& bins, const float n[3]);
 /// of the tiled map (any integers, x0 <= x1, y0 <= y1). Exact when the box has fewer than 65,536
 /// texels; throws std::invalid_argument otherwise (the caller shrinks larger footprints).
 void ndfBoxCounts(const NdfSat& sat, int64_t x0, int64_t y0, int64_t x1, int64_t y1, uint32_t* out);
+
+/// The table as the shaders read it (shade/ndf_histogram.h ndfBoxCounts8): an RGBA32UI 2D array,
+/// layer = stored ring, width x groups by height texels (groups = ceil(P / 8)); texel (x groups + g,
+/// y) packs sectors 8g .. 8g + 7 of map texel (x, y), two per uint (the even sector low). Sectors
+/// past P are 0.
+emu::Texture ndfSatTexture(const NdfSat& sat);
+inline uint32_t ndfSatGroups(const NdfBinningSpec& b) { return (b.sectors + 7) / 8; }
 
 }  // namespace shadetwin

@@ -43,6 +43,26 @@ V4<emu::F32<N>> textureLodLanes(const Sampler2D& s, emu::F32<N> u, emu::F32<N> v
   return r;
 }
 
+/// An integer texture (RGBA32UI) as a GLSL usampler2DArray: texelFetch only, the stored values.
+struct USampler2DArray {
+  const emu::Texture* tex = nullptr;
+};
+
+inline void uintFetchLanes(const USampler2DArray& s, int32_t x, int32_t y, int32_t layer, int level, uint32_t& a,
+                           uint32_t& b, uint32_t& c, uint32_t& d) {
+  const std::array<uint32_t, 4> v = s.tex->loadUint(uint32_t(level), uint32_t(layer), uint32_t(x), uint32_t(y));
+  a = v[0], b = v[1], c = v[2], d = v[3];
+}
+
+template <int N>
+void uintFetchLanes(const USampler2DArray& s, emu::I32<N> x, emu::I32<N> y, emu::I32<N> layer, int level, emu::U32<N>& a,
+                    emu::U32<N>& b, emu::U32<N>& c, emu::U32<N>& d) {
+  for (int i = 0; i < N; ++i) {
+    const std::array<uint32_t, 4> v = s.tex->loadUint(uint32_t(level), uint32_t(layer[i]), uint32_t(x[i]), uint32_t(y[i]));
+    a.set(i, v[0]), b.set(i, v[1]), c.set(i, v[2]), d.set(i, v[3]);
+  }
+}
+
 /// texelFetch(sampler2D, ivec2(x, y), level) (or of a 2D array at `layer`): the stored texel,
 /// converted from its format.
 inline V4<float> texelFetchLanes(const Sampler2D& s, int32_t x, int32_t y, int level, int32_t layer = 0) {

@@ -131,6 +131,7 @@ emu::Texture packTexture(emu::Format format, uint32_t w, uint32_t h, uint32_t la
       switch (format) {
         case emu::Format::RGBA32F: std::memcpy(o, p, 16); break;
         case emu::Format::R32F: std::memcpy(o, p, 4); break;
+        case emu::Format::RGBA32UI: throw std::invalid_argument("packLevels: rgba32ui is an integer format, not packed from floats");
         case emu::Format::RGBA16F:
           for (int c = 0; c < 4; ++c) {
             uint16_t hv = emu::floatToHalf(p[c]);

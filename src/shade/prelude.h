@@ -58,6 +58,18 @@ vec4 texelFetch2D(sampler2D s, int x, int y, int level) { return texelFetch(s, i
 vec4 texelFetchUniform(sampler2D s, int x, int y, int level) { return texelFetch(s, ivec2(x, y), level); }
 // texelFetch of a 2D array texture with separate coordinates.
 vec4 texelFetchLayer(sampler2DArray s, int x, int y, int layer, int level) { return texelFetch(s, ivec3(x, y, layer), level); }
+// An integer texture (RGBA32UI: usampler2DArray), read only by texelFetch, exactly.
+#define USampler2DArray usampler2DArray
+struct UintTexel4 {
+  uint x;
+  uint y;
+  uint z;
+  uint w;
+};
+UintTexel4 texelFetchLayerU(usampler2DArray s, int x, int y, int layer, int level) {
+  uvec4 t = texelFetch(s, ivec3(x, y, layer), level);
+  return UintTexel4(t.x, t.y, t.z, t.w);
+}
 // textureLod of a 2D array texture with the layer apart, and the size of its level 0 as floats.
 vec4 textureLodLayer(sampler2DArray s, vec2 uv, float layer, float lod) { return textureLod(s, vec3(uv, layer), lod); }
 vec2 textureSizeOf(sampler2DArray s) {
@@ -121,6 +133,18 @@ inline Float4 texelFetchLayer(const Sampler2DArray& s, Int x, Int y, Int layer, 
   return ::shadetwin::shade::texelFetchLanes(s, x, y, level, layer);
 }
 inline Float2 textureSizeOf(const Sampler2DArray& s) { return Float2(Float(float(s.tex->width())), Float(float(s.tex->height()))); }
+using USampler2DArray = ::shadetwin::shade::USampler2DArray;
+struct UintTexel4 {
+  Uint x;
+  Uint y;
+  Uint z;
+  Uint w;
+};
+inline UintTexel4 texelFetchLayerU(const USampler2DArray& s, Int x, Int y, Int layer, int level) {
+  UintTexel4 r;
+  ::shadetwin::shade::uintFetchLanes(s, x, y, layer, level, r.x, r.y, r.z, r.w);
+  return r;
+}
 inline Float4 texelFetch2D(const Sampler2D& s, Int x, Int y, int level) {
   return ::shadetwin::shade::texelFetchLanes(s, x, y, level);
 }

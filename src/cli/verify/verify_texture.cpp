@@ -78,6 +78,7 @@ emu::Texture randomTexture(emu::Format fmt, std::mt19937& rng, bool finite) {
     auto value = [&] { return l == infLevel ? ((rng() & 1) ? INFINITY : -INFINITY) : randomValue(rng, finite); };
     for (size_t t = 0; t < size_t(lw) * lh * layers; ++t, p += tb) {
       switch (fmt) {
+        case emu::Format::RGBA32UI: break;  // not a sampled format (kAllFormats)
         case emu::Format::RGBA32F:
         case emu::Format::R32F:
           for (uint32_t c = 0; c < tb / 4; ++c) {
