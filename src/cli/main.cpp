@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   shadetwin::VerifyOptions vo;
   auto* verify = app.add_subcommand("verify", "differential tests: emulator and C++ builds against a Vulkan device");
   verify->require_subcommand(1);
-  for (const char* what : {"math", "texture", "mips", "raster", "shadow", "shade", "frame", "paraboloid", "sh", "visibility"}) {
+  for (const char* what : {"math", "texture", "mips", "raster", "shadow", "shade", "frame", "paraboloid", "sh", "visibility", "ndf"}) {
     auto* sub = verify->add_subcommand(what, std::string("verify ") + what);
     sub->add_option("--count", vo.count, "inputs per function / lookups per configuration")->check(CLI::Range(1, 100000000));
     sub->add_option("--seed", vo.seed, "random seed");
@@ -44,6 +44,10 @@ int main(int argc, char** argv) {
           ->check(CLI::Range(1, 4096));
       sub->add_option("--size", vo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
       sub->add_flag("--fit-v", vo.visibilityV, "fit V alone instead of V max(0, n.w)");
+    }
+    if (w == "ndf") {
+      sub->add_option("--map", vo.mapKind, "normal map kind: flat, flakes, scratches, brushed, bumps");
+      sub->add_option("--size", vo.mapSize, "normal map size")->check(CLI::Range(1, 4096));
     }
     if (w == "paraboloid")
       sub->add_option("--face-size", vo.faceSize, "face size S of the 2S x S atlas")->check(CLI::Range(4, 8192));
@@ -151,6 +155,7 @@ int main(int argc, char** argv) {
     if (verify->got_subcommand("paraboloid")) return shadetwin::verifyParaboloid(vo, std::cout);
     if (verify->got_subcommand("sh")) return shadetwin::verifyShIrradiance(vo, std::cout);
     if (verify->got_subcommand("visibility")) return shadetwin::verifyVisibility(vo, std::cout);
+    if (verify->got_subcommand("ndf")) return shadetwin::verifyNdf(vo, std::cout);
   } catch (const std::exception& e) {
     std::cerr << "shadetwin: error: " << e.what() << "\n";
     return 2;

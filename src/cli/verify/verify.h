@@ -27,6 +27,8 @@ struct VerifyOptions {
   std::string technique;      // shade/frame: shading technique (default: the scene's)
   uint32_t faceSize = 256;    // paraboloid: face size S of the 2S x S atlas
   bool visibilityV = false;   // visibility: fit V alone (default V max(0, n . w))
+  std::string mapKind = "flakes";  // ndf: generated normal map kind
+  uint32_t mapSize = 256;          // ndf: its size
 };
 
 /// Returns the process exit status: 0 when everything is bit-identical, 1 otherwise.
@@ -49,6 +51,9 @@ int verifyVisibility(const VerifyOptions& opts, std::ostream& out);
 int verifyShade(const VerifyOptions& opts, std::ostream& out);
 /// Whole frames: emulator (G-buffer + shading) vs Vulkan build (G-buffer + shading).
 int verifyFrame(const VerifyOptions& opts, std::ostream& out);
+
+/// NDF histogram box counts (issue 17): the shared SAT lookup on both builds against the host's exact counts.
+int verifyNdf(const VerifyOptions& opts, std::ostream& out);
 
 /// Per-channel tally of a bit-for-bit comparison: identical/total and a ULP histogram of what differs.
 struct UlpTally {
