@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   shadetwin::VerifyOptions vo;
   auto* verify = app.add_subcommand("verify", "differential tests: emulator and C++ builds against a Vulkan device");
   verify->require_subcommand(1);
-  for (const char* what : {"math", "texture", "mips", "raster", "shadow", "shade", "frame", "paraboloid", "sh", "visibility", "ndf"}) {
+  for (const char* what : {"math", "texture", "mips", "raster", "shadow", "shade", "frame", "paraboloid", "sh", "visibility", "ndf", "glint-lighting"}) {
     auto* sub = verify->add_subcommand(what, std::string("verify ") + what);
     sub->add_option("--count", vo.count, "inputs per function / lookups per configuration")->check(CLI::Range(1, 100000000));
     sub->add_option("--seed", vo.seed, "random seed");
@@ -28,9 +28,9 @@ int main(int argc, char** argv) {
     sub->add_flag("--validate", vo.validate, "enable Vulkan validation layers; any error fails the run");
     const std::string w = what;
     if (w == "raster" || w == "shadow" || w == "shade" || w == "frame" || w == "paraboloid" || w == "sh" ||
-        w == "visibility") {
+        w == "visibility" || w == "glint-lighting") {
       sub->add_option("--scene", vo.scene, "scene file")->required();
-      if (w != "shadow" && w != "paraboloid" && w != "sh") {
+      if (w != "shadow" && w != "paraboloid" && w != "sh" && w != "glint-lighting") {
         sub->add_option("--width", vo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
         sub->add_option("--height", vo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
       }
@@ -44,6 +44,12 @@ int main(int argc, char** argv) {
           ->check(CLI::Range(1, 4096));
       sub->add_option("--size", vo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
       sub->add_flag("--fit-v", vo.visibilityV, "fit V alone instead of V max(0, n.w)");
+    }
+    if (w == "glint-lighting") {
+      sub->add_option("--order", vo.glintOrder, "SH degree")->check(CLI::Range(0, 64));
+      sub->add_option("--rings", vo.glintRings, "view directions in theta")->check(CLI::Range(2, 1024));
+      sub->add_option("--sectors", vo.glintSectors, "view directions in phi")->check(CLI::Range(1, 2048));
+      sub->add_option("--level", vo.glintLevel, "environment MIP level summed (default: the first at most 64 texels wide)");
     }
     if (w == "ndf") {
       sub->add_option("--map", vo.mapKind, "normal map kind: flat, flakes, scratches, brushed, bumps");
@@ -156,6 +162,7 @@ int main(int argc, char** argv) {
     if (verify->got_subcommand("sh")) return shadetwin::verifyShIrradiance(vo, std::cout);
     if (verify->got_subcommand("visibility")) return shadetwin::verifyVisibility(vo, std::cout);
     if (verify->got_subcommand("ndf")) return shadetwin::verifyNdf(vo, std::cout);
+    if (verify->got_subcommand("glint-lighting")) return shadetwin::verifyGlintLighting(vo, std::cout);
   } catch (const std::exception& e) {
     std::cerr << "shadetwin: error: " << e.what() << "\n";
     return 2;

@@ -12,6 +12,7 @@
 #include "shade/ndf_histogram.h"
 #include "shade/sh_legendre.h"
 #include "shade/glints.h"
+#include "shade/glint_lighting.h"
 #include "shade/sh16.h"
 #include "shade/visibility.h"
 #include "shade/shade_mirror.h"

@@ -29,6 +29,9 @@ struct VerifyOptions {
   bool visibilityV = false;   // visibility: fit V alone (default V max(0, n . w))
   std::string mapKind = "flakes";  // ndf: generated normal map kind
   uint32_t mapSize = 256;          // ndf: its size
+  uint32_t glintOrder = 16;        // glint-lighting: SH degree
+  uint32_t glintRings = 65, glintSectors = 128;  // glint-lighting: view grid
+  int glintLevel = -1;             // glint-lighting: environment level summed (-1: the first at most 64 wide)
 };
 
 /// Returns the process exit status: 0 when everything is bit-identical, 1 otherwise.
@@ -54,6 +57,9 @@ int verifyFrame(const VerifyOptions& opts, std::ostream& out);
 
 /// NDF histogram box counts (issue 17): the shared SAT lookup on both builds against the host's exact counts.
 int verifyNdf(const VerifyOptions& opts, std::ostream& out);
+
+/// The glints lighting table (issue 17) of the scene's environment on both builds: every coefficient of every view.
+int verifyGlintLighting(const VerifyOptions& opts, std::ostream& out);
 
 /// Per-channel tally of a bit-for-bit comparison: identical/total and a ULP histogram of what differs.
 struct UlpTally {

@@ -10,6 +10,7 @@
 #include "passes/mips.h"
 #include "inputs/paraboloid.h"
 #include "inputs/sh_irradiance.h"
+#include "inputs/glint_lighting.h"
 #include "passes/passes_vk.h"
 #include "passes/visibility.h"
 #include "inputs/environment.h"
@@ -207,6 +208,24 @@ int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
   for (int c = 0; c < 16; ++c) t.push_back({"filtered c" + std::to_string(c)});
   for (size_t i = 0; i < fe.coeffs.size(); ++i) t[16 + i % 16].add(fe.coeffs[i], fk.coeffs[i]);
   return finish("visibility", printTallies(t, out), *s.ctx, opts, out);
+}
+
+int verifyGlintLighting(const VerifyOptions& opts, std::ostream& out) {
+  Setup s = setUp(opts, out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet);
+  GlintLightingSpec spec;
+  spec.order = opts.glintOrder, spec.rings = opts.glintRings, spec.sectors = opts.glintSectors;
+  if (opts.glintLevel >= 0) spec.level = uint32_t(opts.glintLevel);
+  else
+    while (spec.level + 1 < env.texture->levelCount() && env.texture->levelWidth(spec.level) > 64) ++spec.level;
+  const GlintLightingTable e = glintLightingEmu(*env.texture, *s.dev, spec), v = glintLightingVulkan(*s.ctx, *env.texture, spec);
+  out << "environment " << s.scene.environment << " level " << spec.level << " (" << env.texture->levelWidth(spec.level) << "x"
+      << env.texture->levelHeight(spec.level) << " texels) -> glint lighting table: " << spec.rings << " x " << spec.sectors
+      << " views, degree " << spec.order << " (" << e.coeffs << " RGB coefficients each, " << e.bytes() / (1 << 20)
+      << " MiB); build emu " << e.buildMs << " ms, vulkan " << v.buildMs << " ms\n";
+  const std::vector<UlpTally> t = compareRgba(e.rgba, v.rgba);
+  return finish("glint-lighting", printTallies(t, out), *s.ctx, opts, out);
 }
 
 }  // namespace shadetwin

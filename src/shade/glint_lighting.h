@@ -1,0 +1,57 @@
+// The glints lighting table (issue 17, docs/DESIGN.md §12): per view direction wo, the SH coefficients
+// of the half-vector lighting Lambda(wh; wo) = L(wi(wh)) 4 (wo.wh),
+//   Lambda_lm(wo) = integral Lambda Y_lm dwh = integral L(wi) Y_lm(normalize(wo + wi)) dwi
+// (the substitution wh -> wi, dwh = dwi / (4 wo.wh), cancels the Jacobian), summed over the texels of
+// one level of the environment: direction and solid angle from a host table (`dirs`, RGBA32F: xyz,
+// dOmega, so every build adds the same terms), radiance by texelFetch. SH of any order with the
+// scaled recurrences of sh_legendre.h, polar axis z in world space. One call computes one column m
+// (every l = m .. order, the Y_l^m and Y_l^-m parts, RGB) for one view, texels in row-major order,
+// so the sum's order is the same on every build. Dialect only.
+
+const int kGlintMaxOrder = 64;
+
+// Column m of one view: c[6 (l - m) + 0..2] the RGB coefficient of Y_l^m, c[6 (l - m) + 3..5] of Y_l^-m
+// (0 for m = 0).
+struct GlintColumn {
+  Float c[6 * (kGlintMaxOrder + 1)];
+};
+
+GlintColumn glintLightingColumn(Sampler2D env, Sampler2D dirs, Sampler2D coef, int envW, int envH, int level, int order, int m,
+                                Float3 wo) {
+  GlintColumn col;
+  for (int i = 0; i < 6 * (kGlintMaxOrder + 1); ++i) col.c[i] = Float(0.0f);
+  float mScale = m == 0 ? 1.0f : 1.41421356f;  // sqrt(2) for the m > 0 pair
+  for (int y = 0; y < envH; ++y) {
+    for (int x = 0; x < envW; ++x) {
+      Float4 L = texelFetchUniform(env, x, y, level);
+      Float4 d = texelFetchUniform(dirs, x, y, 0);
+      PRECISE Float3 h = wo + Float3(d.x, d.y, d.z);
+      PRECISE Float len2 = dot(h, h);
+      Mask ok = len2 > 1e-12f;
+      PRECISE Float3 hn = h * exInverseSqrt(select(ok, len2, Float(1.0f)));
+      ShPolar pol = shPolar(hn);
+      ShLeg s = shLegSeed0();
+      ShAzimuth az = ShAzimuth(Float(1.0f), Float(0.0f));
+      for (int k = 1; k <= m; ++k) {
+        s = shLegSeedNext(s, coef, k, pol.sinT);
+        az = shAzimuthNext(az, pol.cosP, pol.sinP);
+      }
+      PRECISE Float w = select(ok, d.w * mScale, Float(0.0f));
+      PRECISE Float3 wl = Float3(L.x * w, L.y * w, L.z * w);
+      for (int l = m; l <= order; ++l) {
+        if (l > m) s = shLegNext(s, coef, l, m, pol.z);
+        PRECISE Float p = shLegValue(s);
+        PRECISE Float pc = p * az.c;
+        PRECISE Float ps = p * az.s;
+        int i = 6 * (l - m);
+        col.c[i + 0] = col.c[i + 0] + wl.x * pc;
+        col.c[i + 1] = col.c[i + 1] + wl.y * pc;
+        col.c[i + 2] = col.c[i + 2] + wl.z * pc;
+        col.c[i + 3] = col.c[i + 3] + wl.x * ps;
+        col.c[i + 4] = col.c[i + 4] + wl.y * ps;
+        col.c[i + 5] = col.c[i + 5] + wl.z * ps;
+      }
+    }
+  }
+  return col;
+}

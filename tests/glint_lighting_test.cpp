@@ -1,0 +1,66 @@
+// The glints lighting table (shade/glint_lighting.h, inputs/glint_lighting.*) on the emulator against
+// the same sum in double.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "emu/device_profile.h"
+#include "inputs/glint_lighting.h"
+#include "inputs/glint_tables.h"
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+}
+
+TEST(GlintLighting, TableMatchesTheDoubleSumOverTheLevelsTexels) {
+  // A 64 x 32 environment with a smooth part, negative texels and a one-texel sun of 30,000; 9 x 16
+  // views, degree 20: every coefficient within 2e-5 of the double sum relative to the largest
+  // coefficient of its view (float: h = wo + wi cancels where wi is nearly opposite wo, and a
+  // degree-20 value moves ~20x its direction's error; measured 5e-6 at the sun), all finite; the
+  // view grid's poles and seam are where they should be.
+  const uint32_t W = 64, H = 32;
+  std::vector<float> px(size_t(W) * H * 4);
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) {
+      float* p = &px[4 * (size_t(y) * W + x)];
+      p[0] = 0.5f + 0.4f * std::sin(float(x) * 0.3f), p[1] = 0.3f + 0.01f * float(y) - (x == 3 ? 0.5f : 0.0f);
+      p[2] = (x == 20 && y == 8) ? 30000.0f : 0.2f, p[3] = 1.0f;
+    }
+  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, W, H, px.data());
+  shadetwin::GlintLightingSpec s;
+  s.order = 20, s.rings = 9, s.sectors = 16;
+  const shadetwin::GlintLightingTable t = shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), s);
+  ASSERT_EQ(t.coeffs, 21u * 21u);
+  const std::vector<float> vd = shadetwin::glintViewDirections(s);
+  const emu::Texture dirs = shadetwin::glintEnvDirections(W, H);
+  EXPECT_FLOAT_EQ(vd[1], 1.0f);                                  // view (0, 0): +y
+  EXPECT_FLOAT_EQ(vd[(size_t(8) * 16) * 4 + 1], -1.0f);          // last ring: -y
+  EXPECT_NEAR(vd[(size_t(4) * 16) * 4 + 2], 1.0, 1e-7);          // equator, u = 0: +z (the map's seam side)
+  for (uint32_t v = 0; v < s.rings * s.sectors; ++v) {
+    std::vector<double> acc(3 * size_t(t.coeffs), 0.0);
+    for (uint32_t y = 0; y < H; ++y)
+      for (uint32_t x = 0; x < W; ++x) {
+        // The same float directions and solid angles the kernel reads (so the comparison measures
+        // its arithmetic, not the inputs' rounding, which moves degree-20 values by ~20 ulps).
+        const emu::Texel4 q = dirs.loadFloat(0, 0, x, y);
+        const shadetwin::reference::D3 wi{q.r, q.g, q.b};
+        const double dO = q.a;
+        const shadetwin::reference::D3 h{vd[4 * v] + wi.x, vd[4 * v + 1] + wi.y, vd[4 * v + 2] + wi.z};
+        const double len = std::sqrt(dot(h, h));
+        if (len < 1e-6) continue;
+        const std::vector<double> y2 = shadetwin::shRealDouble(s.order, h * (1.0 / len));
+        for (uint32_t k = 0; k < t.coeffs; ++k)
+          for (int c = 0; c < 3; ++c) acc[3 * k + size_t(c)] += double(px[4 * (size_t(y) * W + x) + size_t(c)]) * dO * y2[k];
+      }
+    double scale = 0;
+    for (double a : acc) scale = std::max(scale, std::fabs(a));
+    for (uint32_t k = 0; k < t.coeffs; ++k)
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_TRUE(std::isfinite(t.at(v, k)[c]));
+        EXPECT_NEAR(t.at(v, k)[c], acc[3 * k + size_t(c)], 2e-5 * scale) << "view " << v << " coefficient " << k << " channel " << c;
+      }
+  }
+  EXPECT_THROW(shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), shadetwin::GlintLightingSpec{65, 9, 16, 0}), std::invalid_argument);
+  EXPECT_THROW(shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), shadetwin::GlintLightingSpec{8, 9, 16, 3}), std::invalid_argument);
+}
