@@ -49,6 +49,14 @@ void visibilityLines(std::ostream& passes, const char* build, const VisibilitySe
   passes.precision(prec);
 }
 
+void glintLines(std::ostream& passes, const char* build, const GlintInputs& g) {
+  passes << "  glint SATs (host)       " << std::setw(8) << g.satMs << " ms  (" << g.maps << " normal map" << (g.maps > 1 ? "s" : "")
+         << " of " << g.mapSize << "^2, " << g.bins.rings << " x " << g.bins.sectors << " bins, " << g.satBytes / (1 << 20) << " MiB)\n";
+  passes << "  glint lighting (" << build << ")    " << std::setw(8) << g.lightingMs << " ms  (" << g.lightingSpec.rings << " x "
+         << g.lightingSpec.sectors << " views, degree " << g.lightingSpec.order << ", environment level " << g.lightingSpec.level
+         << ", " << g.lightingBytes / (1 << 20) << " MiB)\n";
+}
+
 // Output path of frame f: OUT itself for a single frame, else OUT's stem + _NNNN.
 std::string frameOut(const std::string& out, uint32_t frames, uint32_t f) {
   if (frames == 1) return out;
@@ -140,6 +148,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       } else if (!cache.lastRebuilt()) {
         passes << "  technique inputs                -     (environment unchanged: reused)\n";
       }
+      if (in.glints && cache.lastRebuilt()) glintLines(passes, "emu", *in.glints);
       if (in.envTables && cache.lastRebuilt()) {
         const EnvSamplingTables& T = *in.envTables;
         passes << "  sampler tables (host)    " << std::setw(8) << T.buildMs << " ms  (" << scene.technique;
@@ -154,6 +163,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       if (vis) visibilityLines(passes, "emu", *vsetup, vt);  // after the G-buffer they read
       passes << "  shading (emu, " << scene.technique;
       if (progressive) passes << ", " << scene.misSamples << " sample pairs, frame " << f;
+      else if (scene.technique == "glints" && in.glints) passes << ", degree " << in.glints->order;
       else if (scene.technique != "mirror") passes << ", " << scene.fisSamples << " samples";
       passes << ")    " << std::setw(8) << tShade << " ms\n";
     } else {

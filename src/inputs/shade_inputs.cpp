@@ -10,8 +10,8 @@ namespace shadetwin {
 namespace {
 // One recipe for both builds: the atlas, the SH and the material maps come from the build that renders
 // (atlas(), sh(), maps()); the light list and the sampler tables are host-built, the same for both.
-template <class Atlas, class Sh, class Maps>
-ShadeInputs shadeInputsWith(const Scene& scene, const emu::Texture& env, Atlas atlas, Sh sh, Maps maps) {
+template <class Atlas, class Sh, class Maps, class Glints>
+ShadeInputs shadeInputsWith(const Scene& scene, const emu::Texture& env, Atlas atlas, Sh sh, Maps maps, Glints glints) {
   ShadeInputs in;
   in.environment = &env;
   if (usesFisPass(scene.technique)) {
@@ -24,7 +24,9 @@ ShadeInputs shadeInputsWith(const Scene& scene, const emu::Texture& env, Atlas a
   if (scene.technique == "env") in.lights = envLights(env, scene.fisSamples);
   if (usesMisPass(scene.technique))
     in.envTables = std::make_shared<EnvSamplingTables>(envSamplingTables(env, envMethodOf(scene.technique), scene.envBlocks));
-  if (scene.technique != "mirror") in.maps = std::make_shared<emu::Texture>(maps(loadMaterialMaps(scene)));
+  if (scene.technique == "glints") in.glints = std::make_shared<GlintInputs>(glints());
+  if (scene.technique != "mirror" && scene.technique != "glints")
+    in.maps = std::make_shared<emu::Texture>(maps(loadMaterialMaps(scene)));
   return in;
 }
 }  // namespace
@@ -32,13 +34,13 @@ ShadeInputs shadeInputsWith(const Scene& scene, const emu::Texture& env, Atlas a
 ShadeInputs shadeInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
   return shadeInputsWith(
       scene, env, [&] { return paraboloidTextureEmu(env, dev, scene.fisFaceSize); }, [&] { return shIrradianceEmu(env, dev); },
-      [](const MaterialMapImages& m) { return materialMapsEmu(m); });
+      [](const MaterialMapImages& m) { return materialMapsEmu(m); }, [&] { return glintInputsEmu(scene, env, dev); });
 }
 
 ShadeInputs shadeInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::Texture& env) {
   return shadeInputsWith(
       scene, env, [&] { return paraboloidTextureVulkan(ctx, env, scene.fisFaceSize); }, [&] { return shIrradianceVulkan(ctx, env); },
-      [&](const MaterialMapImages& m) { return materialMapsVulkan(ctx, m); });
+      [&](const MaterialMapImages& m) { return materialMapsVulkan(ctx, m); }, [&] { return glintInputsVulkan(ctx, scene, env); });
 }
 
 uint64_t shadeInputsKey(const Scene& scene, const emu::Texture& env) {
@@ -54,8 +56,17 @@ uint64_t shadeInputsKey(const Scene& scene, const emu::Texture& env) {
   mix(vis, sizeof vis);
   mix(env.levels()[0].data(), env.levels()[0].size());
   mix(scene.technique.data(), scene.technique.size());
-  for (const Material& m : scene.materials)
+  for (const Material& m : scene.materials) {
     for (const std::string* f : {&m.diffuseMap, &m.specularMap, &m.roughnessMap}) mix(f->data(), f->size() + 1);
+    if (!m.glints) continue;
+    mix(m.glintMap.data(), m.glintMap.size() + 1);
+    const float g[12] = {float(m.glintMapSize), float(m.glintMapSeed), m.glintSpread, m.glintScale, m.glintSigma, m.glintEta[0],
+                         m.glintEta[1], m.glintEta[2], m.glintK[0], m.glintK[1], m.glintK[2], 0.0f};
+    mix(g, sizeof g);
+  }
+  const float gs[6] = {float(scene.glintOrder), float(scene.glintRings), float(scene.glintSectors), scene.glintThetaMax,
+                       float(scene.glintViewRings), float(scene.glintViewSectors)};
+  mix(gs, sizeof gs);
   return h;
 }
 

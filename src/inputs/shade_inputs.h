@@ -12,6 +12,7 @@
 #include "emu/texture.h"
 #include "inputs/env_lights.h"
 #include "inputs/env_sampling.h"
+#include "inputs/glints.h"
 #include "inputs/sh_irradiance.h"
 #include "inputs/visibility.h"
 #include "scene/scene.h"
@@ -28,6 +29,7 @@ struct ShadeInputs {
   std::shared_ptr<const emu::Texture> maps;   // fis, env: material maps (inputs/material.h), a 1x1 white layer if none
   std::shared_ptr<const VisibilitySetup> visibility;  // fis with a "visibility" block: directions, matrices, fit weights
   std::array<float, 48> visLighting{};        // ... and the raw order-4 lighting SH (inputs/visibility.h)
+  std::shared_ptr<const GlintInputs> glints;  // glints: SATs, bins, material rows, lighting table (inputs/glints.h)
   double atlasMs = 0, shMs = 0;               // build times (0 when not built)
   /// The texture the shading kernel samples: the atlas for fis, else the environment.
   const emu::Texture& texture() const { return atlas ? *atlas : *environment; }

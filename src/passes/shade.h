@@ -43,6 +43,16 @@ shade::Sampler2D materialMapSampler(const emu::Texture& tex, const emu::DevicePr
 /// Mode of the FIS pass for the scene's technique (kFisFiltered / kFisUnfiltered / kFisStochastic).
 uint32_t fisMode(const Scene& scene);
 
+/// The glints pass's uniform settings (shade/shade_glints.h GlintSettings, field for field; the
+/// start of the push block of shade_glints.comp).
+struct GlintUniforms {
+  uint32_t order, rings, sectors, mapW, mapH;
+  float invW, invH;
+  uint32_t viewRings, viewSectors;
+};
+static_assert(sizeof(GlintUniforms) == 36, "GlintUniforms must match shade_glints.h GlintSettings (std430, binding 4 of shade_glints.comp)");
+GlintUniforms glintUniforms(const GlintInputs& in);
+
 /// log2(K w h / N) of the FIS level formula for the scene's settings (w h = S^2 texels per face).
 float fisLevelConstant(const Scene& scene);
 

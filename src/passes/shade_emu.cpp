@@ -61,6 +61,12 @@ uint32_t fisMode(const Scene& scene) {
   return shade::scalar::kFisFiltered;
 }
 
+GlintUniforms glintUniforms(const GlintInputs& in) {
+  return {in.order, in.bins.rings, in.bins.sectors, in.sat->width() / ndfSatGroups(in.bins), in.sat->height(),
+          1.0f / float(in.sat->width() / ndfSatGroups(in.bins)), 1.0f / float(in.sat->height()), in.lightingSpec.rings,
+          in.lightingSpec.sectors};
+}
+
 float fisLevelConstant(const Scene& scene) {
   const double S = scene.fisFaceSize;
   return float(std::log2(double(scene.fisK) * S * S / double(scene.fisSamples)));
@@ -233,10 +239,28 @@ void shadeMisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
                                   m.specular, m.brdf, visMode, laneVisibility(p, useVis ? vis : nullptr));
   });
 }
+// Technique glints: shade_glints.comp's shadeGlints over the frame's glint inputs.
+void shadeGlintsEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                    std::vector<float>& out) {
+  const GlintInputs& gi = *in.glints;
+  const shade::Sampler2D env = environmentSampler(*in.environment, dev, true);
+  const shade::USampler2DArray sat{gi.sat.get()};
+  const shade::Sampler2D bins = environmentSampler(*gi.binDirs, dev, false), mats = environmentSampler(*gi.materials, dev, false),
+                         lighting = environmentSampler(*gi.lighting, dev, false), coef = environmentSampler(*gi.coef, dev, false);
+  const GlintUniforms u = glintUniforms(gi);
+  const shade::x8::GlintSettings s{u.order, u.rings, u.sectors, u.mapW, u.mapH, u.invW, u.invH, u.viewRings, u.viewSectors};
+  const F8 intensity(scene.environmentIntensity);
+  shadePixelBlocks(scene, g, dev, 2, uint32_t(scene.materials.size()), out, [&](const PixelBlock& p) {
+    emu::I32<8> row;
+    for (int l = 0; l < 8; ++l) row.set(l, int32_t(p.slot[l]));
+    return shade::x8::shadeGlints(sat, bins, mats, lighting, coef, env, s, intensity, p.g0, p.g1, p.g2, p.g3, p.eye, p.ray, row);
+  });
+}
 }  // namespace
 
 void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
               std::vector<float>& out, const VisibilityImage* vis) {
+  if (scene.technique == "glints") return shadeGlintsEmu(scene, g, in, dev, out);
   if (usesFisPass(scene.technique)) return shadeFisEmu(scene, g, in, dev, out, vis);
   if (usesMisPass(scene.technique)) return shadeMisEmu(scene, g, in, dev, out, vis);
   if (scene.technique == "env") return shadeEnvEmu(scene, g, in, dev, out);

@@ -16,6 +16,7 @@ namespace {
 #include "shade_fis_comp.inc"
 #include "shade_env_comp.inc"
 #include "shade_env_mis_comp.inc"
+#include "shade_glints_comp.inc"
 
 // One push block for both kernels: shade_mirror.comp declares the first 96 bytes (its last uint is
 // padding), shade_fis.comp all 112.
@@ -33,7 +34,9 @@ static_assert(sizeof(ShadePush) == 112, "ShadePush must match the push block of 
 // 4 = SH coefficients and 5 = material maps, the atlas (clamped in u); env 96 bytes (sampleCount =
 // light count), binding 4 = lights and 5 = material maps, the equirectangular map. fis and env read
 // whole 128-byte material records and G0..G3 (64 bytes per pixel), mirror G0, G1. The MIS kernel:
-// 96 bytes, binding 4 = MisSettingsGpu, 5 = material maps, 6 and 7 = the sampler's tables.
+// 96 bytes, binding 4 = MisSettingsGpu, 5 = material maps, 6 and 7 = the sampler's tables. glints:
+// 96 bytes, G0..G3, binding 4 = GlintUniforms, 5 = the SATs (RGBA32UI array), 6 bin directions,
+// 7 material rows, 8 the lighting table, 9 the Legendre coefficients (inputs/glints.h).
 struct KernelInfo {
   std::span<const uint32_t> spirv;
   uint32_t bindings;
@@ -44,6 +47,7 @@ KernelInfo kernelInfo(const std::string& technique) {
   if (usesFisPass(technique)) return {kSpv_shade_fis_comp, 6, sizeof(ShadePush), true, false};
   if (technique == "env") return {kSpv_shade_env_comp, 6, offsetof(ShadePush, levelConstant), true, true};
   if (usesMisPass(technique)) return {kSpv_shade_env_mis_comp, 8, offsetof(ShadePush, levelConstant), true, true};
+  if (technique == "glints") return {kSpv_shade_glints_comp, 10, offsetof(ShadePush, levelConstant), false, true};
   return {kSpv_shade_mirror_comp, 4, offsetof(ShadePush, levelConstant), false, true};
 }
 
@@ -81,11 +85,14 @@ struct ShadePassVk::Impl {
   vk::Sampler mapSampler;
   std::unique_ptr<vk::Image> table, texels;  // *-mis: the environment sampler's tables (bindings 6, 7)
   vk::Sampler tableSampler;
+  std::unique_ptr<vk::Image> glintSat, glintBins, glintMats, glintLighting, glintCoef;  // glints: bindings 5-9
+  std::shared_ptr<const GlintInputs> glints;
   std::unique_ptr<vk::Buffer> gbuf, out;
-  static constexpr VkDescriptorType kLayout[8] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                                                  VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+  static constexpr VkDescriptorType kLayout[10] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
   const EnvSamplingTables* envTables;
   KernelInfo info;
   bool fis;
@@ -125,6 +132,16 @@ struct ShadePassVk::Impl {
       throw vk::Error("shading pass: the environment and the material maps must be RGBA32F");
     for (size_t i = 0; i < records.size(); ++i)
       std::memcpy(materials.as<uint8_t>() + i * materialStride(), &records[i], materialStride());
+    if (in.glints) {
+      glints = in.glints;
+      const emu::Texture& st = *in.glints->sat;
+      glintSat = std::make_unique<vk::Image>(c, VK_FORMAT_R32G32B32A32_UINT, st.width(), st.height(), st.layers(), st.levels(), 16,
+                                             VK_IMAGE_VIEW_TYPE_2D_ARRAY);
+      glintBins = dataTextureImage(c, *in.glints->binDirs);
+      glintMats = dataTextureImage(c, *in.glints->materials);
+      glintLighting = dataTextureImage(c, *in.glints->lighting);
+      glintCoef = dataTextureImage(c, *in.glints->coef);
+    }
   }
 };
 
@@ -135,7 +152,7 @@ ShadePassVk::~ShadePassVk() = default;
 std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis) {
   Impl& m = *impl_;
   const size_t n = size_t(g.width) * g.height;
-  const size_t stride = m.info.brdf ? 64 : 32;  // G0, G1 (+ G2, G3: tangent, uv derivatives, for fis and env)
+  const size_t stride = m.info.brdf || m.glints ? 64 : 32;  // G0, G1 (+ G2, G3: tangent, uv derivatives, for fis, env, glints)
   if (!m.gbuf || m.gbuf->size() < n * stride) {
     m.gbuf = std::make_unique<vk::Buffer>(m.ctx, n * stride);
     m.out = std::make_unique<vk::Buffer>(m.ctx, n * 16);
@@ -143,7 +160,7 @@ std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis
   float* dst = m.gbuf->as<float>();
   for (size_t p = 0; p < n; ++p) std::memcpy(dst + stride / 4 * p, g.texels.data() + p * kGbufFloats, stride);
   const CameraRays cam = cameraRays(m.scene);
-  vk::Binding b[8] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
+  vk::Binding b[10] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.gbuf->handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.materials.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.out->handle()},
@@ -152,7 +169,14 @@ std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis
                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.table ? m.table->view() : VK_NULL_HANDLE,
                              m.tableSampler.handle()},
                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.texels ? m.texels->view() : VK_NULL_HANDLE,
-                             m.tableSampler.handle()}};
+                             m.tableSampler.handle()},
+                            {}, {}};
+  if (m.glints) {  // glints: the uniforms in binding 4, the tables in 5-9
+    const GlintUniforms u = glintUniforms(*m.glints);
+    std::memcpy(m.extra.data(), &u, sizeof u);
+    const vk::Image* img[5] = {m.glintSat.get(), m.glintBins.get(), m.glintMats.get(), m.glintLighting.get(), m.glintCoef.get()};
+    for (int k = 0; k < 5; ++k) b[5 + k] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, img[k]->view(), m.tableSampler.handle()};
+  }
   // fis with visibility: binding 4 is the E/pi coefficients, the lighting SH and the pixels' fit.
   std::unique_ptr<vk::Buffer> visExtra;
   const bool useVis = m.fis && vis && m.visibility;

@@ -201,7 +201,8 @@ Scene loadScene(const std::string& path) {
     throw SceneError(path + ": not valid JSON: " + e.what());
   }
   Reader R{path};
-  R.keys(j, "", {"image", "camera", "environment", "technique", "fis", "mis", "visibility", "materials", "objects", "description"});
+  R.keys(j, "", {"image", "camera", "environment", "technique", "fis", "mis", "visibility", "glints", "materials", "objects",
+                 "description"});
   const fs::path dir = fs::path(path).parent_path();
   const fs::path root = fs::weakly_canonical(dir / "..");
   Scene s;
@@ -238,7 +239,7 @@ Scene loadScene(const std::string& path) {
   s.technique = R.string(j, "technique", "fis");
   if (!isTechnique(s.technique))
     R.fail("technique", "unknown technique '" + s.technique +
-                           "' (expected: fis, unfiltered, stochastic, env, mirror, kdtree-mis, alias-mis or inversion-mis)");
+                           "' (expected: fis, unfiltered, stochastic, env, mirror, kdtree-mis, alias-mis, inversion-mis or glints)");
   if (j.contains("fis")) {
     const json& f = j["fis"];
     if (!f.is_object()) R.fail("fis", "expected an object with samples, k, face_size");
@@ -247,6 +248,18 @@ Scene loadScene(const std::string& path) {
     s.fisK = R.number(f, "fis.k", 4, 1e-3f, 1e6f);
     s.fisFaceSize = uint32_t(R.number(f, "fis.face_size", 256, 4, 8192));
     s.fisLevelBias = R.number(f, "fis.level_bias", 0, 0, 16);
+  }
+  if (j.contains("glints")) {
+    const json& f = j["glints"];
+    if (!f.is_object()) R.fail("glints", "expected an object with order, rings, sectors, theta_max, view_rings, view_sectors");
+    R.keys(f, "glints", {"order", "rings", "sectors", "theta_max", "view_rings", "view_sectors"});
+    s.glintOrder = uint32_t(R.number(f, "glints.order", 16, 0, 32));
+    s.glintRings = uint32_t(R.number(f, "glints.rings", 9, 1, 16));
+    s.glintSectors = uint32_t(R.number(f, "glints.sectors", 32, 8, 64));
+    if (s.glintSectors % 8) R.fail("glints.sectors", "expected a multiple of 8 (the table packs 8 sectors per texel)");
+    s.glintThetaMax = R.number(f, "glints.theta_max", 90, 1, 180) * 3.14159265f / 180.0f;
+    s.glintViewRings = uint32_t(R.number(f, "glints.view_rings", 65, 2, 513));
+    s.glintViewSectors = uint32_t(R.number(f, "glints.view_sectors", 128, 1, 1024));
   }
   if (j.contains("visibility")) {
     const json& f = j["visibility"];
@@ -290,7 +303,7 @@ Scene loadScene(const std::string& path) {
       const json& m = j["materials"][i];
       const std::string key = "materials[" + std::to_string(i) + "]";
       R.keys(m, key, {"name", "diffuse", "specular", "brdf", "exponent", "roughness", "roughness_y", "lobes", "diffuse_map",
-                      "specular_map", "roughness_map"});
+                      "specular_map", "roughness_map", "glints"});
       Material mat;
       mat.name = R.string(m, key + ".name", "", true);
       if (matIndex.count(mat.name)) R.fail(key + ".name", "duplicate material name '" + mat.name + "'");
@@ -329,11 +342,34 @@ Scene loadScene(const std::string& path) {
       mat.roughnessMap = map("roughness_map");
       if (!mat.roughnessMap.empty() && mat.brdf != "ward" && mat.brdf != "ggx")
         R.fail(key + ".roughness_map", "a roughness map needs brdf ward or ggx (brdf is '" + mat.brdf + "')");
+      if (m.contains("glints")) {
+        const json& g = m["glints"];
+        const std::string gk = key + ".glints";
+        if (!g.is_object()) R.fail(gk, "expected an object with map, size, seed, spread, scale, sigma, eta, k");
+        R.keys(g, gk, {"map", "size", "seed", "spread", "scale", "sigma", "eta", "k"});
+        mat.glints = true;
+        mat.glintMap = R.string(g, gk + ".map", "flakes");
+        static const std::set<std::string> kinds{"flat", "flakes", "scratches", "brushed", "bumps"};
+        if (!kinds.count(mat.glintMap)) mat.glintMap = R.existingPath(dir, mat.glintMap, gk + ".map");
+        mat.glintMapSize = uint32_t(R.number(g, gk + ".size", 512, 1, 4096));
+        mat.glintMapSeed = uint32_t(R.number(g, gk + ".seed", 1, 0, 4e9f));
+        mat.glintSpread = R.number(g, gk + ".spread", 0.15f, 0, 1.5f);
+        mat.glintScale = R.number(g, gk + ".scale", 4, 1e-3f, 1e4f);
+        mat.glintSigma = R.number(g, gk + ".sigma", 0.05f, 0.005f, 1.0f);
+        mat.glintEta = R.vec3(g, gk + ".eta", mat.glintEta);
+        mat.glintK = R.vec3(g, gk + ".k", mat.glintK);
+      }
       matIndex[mat.name] = uint32_t(s.materials.size());
       s.materials.push_back(mat);
     }
   }
   if (s.materials.empty()) s.materials.push_back(Material{"default"});
+  if (s.technique == "glints")
+    for (size_t i = 0; i < s.materials.size(); ++i)
+      if (!s.materials[i].glints)
+        R.fail("materials[" + std::to_string(i) + "].glints",
+               "technique glints shades every material as a glinty conductor: material '" + s.materials[i].name +
+                   "' has no glints block (\"glints\": {\"map\": \"flat\"} is a smooth one)");
 
   if (!j.contains("objects") || !j["objects"].is_array() || j["objects"].empty())
     R.fail("objects", "expected a non-empty array of objects");

@@ -42,6 +42,14 @@ struct Material {
   // and repeat addressing at the LOD of the pixel's uv footprint (shade/material.h).
   std::string diffuseMap, specularMap, roughnessMap;
   bool hasMaps() const { return !diffuseMap.empty() || !specularMap.empty() || !roughnessMap.empty(); }
+  // Glints (issue 17, the "glints" block; technique glints): a conductor whose micro-normals come from
+  // a tiled normal map (a generator kind or an image file), `scale` tiles per uv unit, each texel a
+  // Gaussian lobe of width sigma (radians), Fresnel from the complex index eta + i k per channel.
+  bool glints = false;
+  std::string glintMap = "flakes";  // flat, flakes, scratches, brushed, bumps, or a resolved file path
+  uint32_t glintMapSize = 512, glintMapSeed = 1;
+  float glintSpread = 0.15f, glintScale = 4.0f, glintSigma = 0.05f;
+  Vec3 glintEta{0.143f, 0.374f, 1.442f}, glintK{3.983f, 2.385f, 1.603f};  // gold
 };
 
 struct Object {
@@ -73,7 +81,8 @@ struct CameraBasis {
 /// "alias-mis" and "inversion-mis" (issue 5) run the MIS pass (shade/shade_env_mis.h) with the
 /// environment sampled by the kd-tree's fitted block distribution, an alias table over the same
 /// blocks, or the inversion method.
-inline constexpr const char* kTechniques[] = {"fis", "unfiltered", "stochastic", "env", "mirror", "kdtree-mis", "alias-mis", "inversion-mis"};
+inline constexpr const char* kTechniques[] = {"fis",       "unfiltered", "stochastic",    "env",   "mirror",
+                                             "kdtree-mis", "alias-mis", "inversion-mis", "glints"};
 inline bool isTechnique(const std::string& t) {
   for (const char* k : kTechniques)
     if (t == k) return true;
@@ -113,6 +122,12 @@ struct Scene {
   uint32_t visFilterRadius = 2;  // spatial filter of the coefficients: radius (0: none), edge-aware or box
   bool visFilterEdge = true;
   uint32_t misFrame = 0;
+  // Glints ("glints" block, issue 17): SH degree of the lighting table and the shading, the NDF
+  // histogram's bins (rings over [0, thetaMax], sectors) and the lighting table's view grid.
+  uint32_t glintOrder = 16;
+  uint32_t glintRings = 9, glintSectors = 32;
+  float glintThetaMax = 1.57079633f;
+  uint32_t glintViewRings = 65, glintViewSectors = 128;
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Object> objects;

@@ -23,3 +23,4 @@
 #include "shade/philox.h"
 #include "shade/env_sampling.h"
 #include "shade/shade_env_mis.h"
+#include "shade/shade_glints.h"

@@ -19,7 +19,7 @@ struct GlintBox {
   Mask cut;
 };
 
-GlintBox glintFootprint(Float u, Float v, Float4 duv, float texels) {
+GlintBox glintFootprint(Float u, Float v, Float4 duv, Float texels) {
   PRECISE Float cu = u * texels;
   PRECISE Float cv = v * texels;
   PRECISE Float hu = 0.5f * ((abs(duv.x) + abs(duv.z)) * texels);
@@ -67,7 +67,7 @@ Float3 fresnelConductor(Float cosT, Float3 eta, Float3 k) {
 // a < 1.6, else 1 (clamped to 1: just below a = 1.6 the rational form reaches 1.00001); 0 at or
 // below the horizon. A Gaussian lobe of angular width sigma is a Beckmann
 // lobe of alpha = sqrt(2) sigma (exp(-tan^2 / alpha^2) ~ exp(-theta^2 / (2 sigma^2))).
-Float smithG1Beckmann(Float cosT, float alpha) {
+Float smithG1Beckmann(Float cosT, Float alpha) {
   PRECISE Float c = clamp(cosT, 0.0f, 1.0f);
   PRECISE Float s = exSqrt(max(1.0f - c * c, 0.0f));
   PRECISE Float a = exDiv(c, alpha * max(s, 1e-30f));

@@ -56,9 +56,9 @@ NdfAxis ndfAxis(Int a, Int b, int n, float invN) {
 }
 
 // The SAT's four packed uints of group g at map texel (x, y) of ring layer `layer`; 0 when x or y < 0.
-UintTexel4 ndfSatAt(USampler2DArray sat, Int x, Int y, int layer, int g, int groups) {
+UintTexel4 ndfSatAt(USampler2DArray sat, Int x, Int y, Int layer, int g, int groups) {
   Mask outside = x < Int(0) || y < Int(0);
-  UintTexel4 t = texelFetchLayerU(sat, max(x, Int(0)) * groups + Int(g), max(y, Int(0)), Int(layer), 0);
+  UintTexel4 t = texelFetchLayerU(sat, max(x, Int(0)) * groups + Int(g), max(y, Int(0)), layer, 0);
   Uint z = Uint(0u);
   return UintTexel4(select(outside, z, t.x), select(outside, z, t.y), select(outside, z, t.z), select(outside, z, t.w));
 }
@@ -71,7 +71,7 @@ struct NdfAcc8 {
 Uint ndfCornerSum(Uint s11, Uint s01, Uint s10, Uint s00, Uint shift) {
   return (((s11 >> shift) & 0xffffu) - ((s01 >> shift) & 0xffffu) - ((s10 >> shift) & 0xffffu)) + ((s00 >> shift) & 0xffffu);
 }
-NdfAcc8 ndfAddBox(NdfAcc8 acc, USampler2DArray sat, int layer, int g, int groups, Int xl, Int xh, Int yl, Int yh, Uint m) {
+NdfAcc8 ndfAddBox(NdfAcc8 acc, USampler2DArray sat, Int layer, int g, int groups, Int xl, Int xh, Int yl, Int yh, Uint m) {
   UintTexel4 a = ndfSatAt(sat, xh, yh, layer, g, groups);
   UintTexel4 b = ndfSatAt(sat, xl - Int(1), yh, layer, g, groups);
   UintTexel4 c = ndfSatAt(sat, xh, yl - Int(1), layer, g, groups);
@@ -89,7 +89,7 @@ NdfAcc8 ndfAddBox(NdfAcc8 acc, USampler2DArray sat, int layer, int g, int groups
 // is added with its multiplicity, always all nine (a piece of multiplicity 0 adds 0), so every
 // lane runs the same code. invW, invH: 1 / width, 1 / height from the host (a quotient guess only:
 // ndfDivMod corrects it, so any rounding of it gives the same result).
-UintTexel4 ndfBoxCounts8(USampler2DArray sat, int layer, int g, int groups, int width, int height, float invW, float invH,
+UintTexel4 ndfBoxCounts8(USampler2DArray sat, Int layer, int g, int groups, int width, int height, float invW, float invH,
                          Int x0, Int y0, Int x1, Int y1) {
   NdfAxis ax = ndfAxis(x0, x1, width, invW);
   NdfAxis ay = ndfAxis(y0, y1, height, invH);

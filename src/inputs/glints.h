@@ -1,0 +1,38 @@
+// What the glints technique's shading pass reads (issue 17, docs/DESIGN.md §12): the normal maps'
+// NDF histogram SATs (host-built, one RGBA32UI array for every map of the scene), the bins'
+// directions, one record row per material, the lighting table (built by the shared kernel on
+// whichever build renders) and the Legendre coefficient table.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "emu/device_profile.h"
+#include "emu/texture.h"
+#include "inputs/glint_lighting.h"
+#include "inputs/ndf_histogram.h"
+#include "scene/scene.h"
+
+namespace shadetwin {
+namespace vk { class Context; }
+
+struct GlintInputs {
+  std::shared_ptr<const emu::Texture> sat;        // RGBA32UI 2D array: the stored rings of every map
+  std::shared_ptr<const emu::Texture> binDirs;    // RGBA32F rings x sectors: each bin's tangent-space direction
+  std::shared_ptr<const emu::Texture> materials;  // RGBA32F (6 + order + 1) x materials, layout in glints.cpp
+  std::shared_ptr<const emu::Texture> lighting;   // RGBA32F (order + 1)^2 x views (inputs/glint_lighting.h)
+  std::shared_ptr<const emu::Texture> coef;       // Legendre recurrence coefficients (inputs/sh_legendre.h)
+  NdfBinningSpec bins;
+  GlintLightingSpec lightingSpec;
+  uint32_t mapSize = 0, maps = 0;
+  uint32_t order = 0;  // the shading loop's degree: min(table degree, the largest lobe band limit at 1e-6)
+  size_t satBytes = 0, lightingBytes = 0;
+  double satMs = 0, lightingMs = 0;
+};
+
+/// Throws std::invalid_argument naming the material when its map cannot be generated or loaded, or
+/// when the scene's maps differ in size (one texture array holds them all).
+GlintInputs glintInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev);
+GlintInputs glintInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::Texture& env);
+
+}  // namespace shadetwin

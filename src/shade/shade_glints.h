@@ -1,0 +1,134 @@
+// Technique glints (issue 17; Gamboa, Guertin, Nowrouzezahrai 2018; docs/DESIGN.md §12): per pixel,
+// the footprint's NDF histogram from the SAT, as SH (every non-empty bin's Gaussian lobe, rotated to
+// the bin's direction in world space through the pixel's tangent frame: D_lm += (count / area) k_l
+// Y_lm(d_b)), dotted with the half-vector lighting's SH interpolated between the four table views
+// around wo, times F G / (4 cos_o) at the macro normal:
+//   L_o = F(wo.n) G1(wo) G1(r) / (4 cos_o) * sum_lm Lambda_lm(wo) D_lm,   r = reflect(wo, n).
+// Bins no lane of the vector has are skipped (IF_ANY); loops run to the frame's degree `order`
+// (each lane's k_l is 0 beyond its lobe's band limit). Background pixels: the environment along the
+// camera ray. Dialect only.
+
+const int kGlintShadeMaxOrder = 32;
+const int kGlintShadeCoeffs = (kGlintShadeMaxOrder + 1) * (kGlintShadeMaxOrder + 1);
+
+struct GlintSettings {
+  uint order;        // shading degree (<= kGlintShadeMaxOrder)
+  uint rings;        // NDF bins in theta
+  uint sectors;      // NDF bins in phi (a multiple of 8)
+  uint mapW;         // normal map size (texels)
+  uint mapH;
+  float invW;        // 1 / mapW, 1 / mapH (host-rounded quotient guesses for ndfDivMod)
+  float invH;
+  uint viewRings;    // lighting table views
+  uint viewSectors;
+};
+
+Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampler2D lighting, Sampler2D coef, Sampler2D env,
+                   GlintSettings s, Float intensity, Float4 g0, Float4 g1, Float4 g2, Float4 g3, Float3 eye, Float3 ray, Int row) {
+  Mask geometry = g0.w != 0.0f;
+  PRECISE Float3 up = Float3(Float(0.0f), Float(0.0f), Float(1.0f));
+  PRECISE Float3 n = exNormalize(select(geometry, Float3(g1.x, g1.y, g1.z), up));
+  PRECISE Float3 tg = Float3(g2.x, g2.y, g2.z);
+  PRECISE Float3 tp = tg - n * dot(n, tg);
+  // A degenerate tangent (none, or along n): any perpendicular (the map's orientation is then arbitrary).
+  PRECISE Float3 alt = select(abs(n.x) < 0.9f, Float3(Float(0.0f), -n.z, n.y), Float3(-n.z, Float(0.0f), n.x));
+  PRECISE Float3 t = exNormalize(select(dot(tp, tp) > 1e-12f, tp, alt));
+  PRECISE Float3 b = cross(n, t) * select(g0.w < 0.0f, Float(-1.0f), Float(1.0f));
+  PRECISE Float3 wo = exNormalize(select(geometry, eye - Float3(g0.x, g0.y, g0.z), up));
+  PRECISE Float cosO = dot(n, wo);
+  Mask lit = geometry && cosO > 0.0f;
+  Float4 m0 = texelFetch2D(mats, Int(0), row, 0);  // eta, sigma
+  Float4 m1 = texelFetch2D(mats, Int(1), row, 0);  // k, texels per uv
+  GlintBox box = glintFootprint(g1.w, g2.w, g3, m1.w);
+  PRECISE Float area = Float(box.x1 - box.x0 + Int(1)) * Float(box.y1 - box.y0 + Int(1));
+  PRECISE Float invArea = exDiv(1.0f, area);
+  int order = int(s.order);
+  int nc = (order + 1) * (order + 1);
+  Float kl[kGlintShadeMaxOrder + 1];
+  for (int l = 0; l <= order; ++l) kl[l] = texelFetch2D(mats, Int(6 + l), row, 0).x;
+  Float D[kGlintShadeCoeffs];
+  for (int i = 0; i < nc; ++i) D[i] = Float(0.0f);
+  int groups = int(s.sectors) / 8;
+  for (int r = 0; r < int(s.rings); ++r) {
+    Float4 slots = texelFetch2D(mats, Int(2 + r / 4), row, 0);
+    Float slotF = slots.x;
+    if (r % 4 == 1) slotF = slots.y;
+    if (r % 4 == 2) slotF = slots.z;
+    if (r % 4 == 3) slotF = slots.w;
+    Mask has = lit && slotF >= 0.0f;
+    Int layer = Int(max(slotF, 0.0f));
+    IF_ANY(has) {
+      for (int g = 0; g < groups; ++g) {
+        UintTexel4 c8 = ndfBoxCounts8(sat, layer, g, groups, int(s.mapW), int(s.mapH), s.invW, s.invH, box.x0, box.y0, box.x1, box.y1);
+        for (int j = 0; j < 8; ++j) {
+          Uint word = c8.x;
+          if (j / 2 == 1) word = c8.y;
+          if (j / 2 == 2) word = c8.z;
+          if (j / 2 == 3) word = c8.w;
+          Uint cnt = (word >> uint(16 * (j % 2))) & 0xffffu;
+          Mask on = has && cnt > Uint(0u);
+          IF_ANY(on) {
+            PRECISE Float w = select(on, Float(cnt) * invArea, Float(0.0f));
+            Float4 dt = texelFetchUniform(binDirs, 8 * g + j, r, 0);
+            PRECISE Float3 d = t * dt.x + b * dt.y + n * dt.z;
+            ShPolar pol = shPolar(d);
+            ShLeg seed = shLegSeed0();
+            ShAzimuth az = ShAzimuth(Float(1.0f), Float(0.0f));
+            for (int m = 0; m <= order; ++m) {
+              if (m > 0) {
+                seed = shLegSeedNext(seed, coef, m, pol.sinT);
+                az = shAzimuthNext(az, pol.cosP, pol.sinP);
+              }
+              PRECISE Float wc = select(Mask(m == 0), w, w * 1.41421356f) * az.c;
+              PRECISE Float ws = (w * 1.41421356f) * az.s;
+              ShLeg sl = seed;
+              for (int l = m; l <= order; ++l) {
+                if (l > m) sl = shLegNext(sl, coef, l, m, pol.z);
+                PRECISE Float p = shLegValue(sl) * kl[l];
+                D[l * l + l + m] = D[l * l + l + m] + wc * p;
+                if (m > 0) D[l * l + l - m] = D[l * l + l - m] + ws * p;
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  // Lambda(wo): bilinear between the four table views around wo (theta clamped, phi wrapping).
+  Float2 uv = equirectUv(wo);
+  PRECISE Float fx = uv.x * float(s.viewSectors);
+  PRECISE Float fy = uv.y * float(s.viewRings - 1u);
+  Int x0 = Int(floor(fx));
+  PRECISE Float ax = fx - floor(fx);
+  x0 = select(x0 >= Int(int(s.viewSectors)), x0 - Int(int(s.viewSectors)), x0);
+  Int x1 = select(x0 + Int(1) >= Int(int(s.viewSectors)), Int(0), x0 + Int(1));
+  Int y0 = clamp(Int(floor(fy)), Int(0), Int(int(s.viewRings) - 2));
+  PRECISE Float ay = clamp(fy - Float(y0), 0.0f, 1.0f);
+  Int vs = Int(int(s.viewSectors));
+  Int v00 = y0 * vs + x0;
+  Int v01 = y0 * vs + x1;
+  Int v10 = (y0 + Int(1)) * vs + x0;
+  Int v11 = (y0 + Int(1)) * vs + x1;
+  PRECISE Float3 sum = Float3(Float(0.0f), Float(0.0f), Float(0.0f));
+  for (int i = 0; i < nc; ++i) {
+    Float4 a = texelFetch2D(lighting, Int(i), v00, 0);
+    Float4 bq = texelFetch2D(lighting, Int(i), v01, 0);
+    Float4 c = texelFetch2D(lighting, Int(i), v10, 0);
+    Float4 dq = texelFetch2D(lighting, Int(i), v11, 0);
+    PRECISE Float3 top = Float3(a.x, a.y, a.z) * (1.0f - ax) + Float3(bq.x, bq.y, bq.z) * ax;
+    PRECISE Float3 bot = Float3(c.x, c.y, c.z) * (1.0f - ax) + Float3(dq.x, dq.y, dq.z) * ax;
+    PRECISE Float3 L = top * (1.0f - ay) + bot * ay;
+    sum = sum + L * D[i];
+  }
+  PRECISE Float alpha = m0.w * 1.41421356f;
+  // r = reflect(wo, n) makes the same angle with n as wo: G1(r) = G1(wo).
+  PRECISE Float3 F = fresnelConductor(cosO, Float3(m0.x, m0.y, m0.z), Float3(m1.x, m1.y, m1.z));
+  PRECISE Float g1o = smithG1Beckmann(cosO, alpha);
+  PRECISE Float G = g1o * g1o;
+  PRECISE Float scale = exDiv(G, 4.0f * max(cosO, 1e-6f));
+  PRECISE Float3 rad = Float3(sum.x * F.x, sum.y * F.y, sum.z * F.z) * scale;
+  Float4 bg = textureLod(env, equirectUv(ray), 0.0f);
+  PRECISE Float3 col = select(geometry, select(lit, rad, Float3(Float(0.0f), Float(0.0f), Float(0.0f))), Float3(bg.x, bg.y, bg.z));
+  col = col * intensity;
+  return Float4(col.x, col.y, col.z, 1.0f);
+}
