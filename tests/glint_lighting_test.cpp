@@ -8,6 +8,8 @@
 #include "emu/device_profile.h"
 #include "inputs/glint_lighting.h"
 #include "inputs/glint_tables.h"
+#include "inputs/glints.h"
+#include "inputs/sh_legendre.h"
 
 namespace {
 constexpr double kPi = std::numbers::pi;
@@ -63,4 +65,36 @@ TEST(GlintLighting, TableMatchesTheDoubleSumOverTheLevelsTexels) {
   }
   EXPECT_THROW(shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), shadetwin::GlintLightingSpec{65, 9, 16, 0}), std::invalid_argument);
   EXPECT_THROW(shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), shadetwin::GlintLightingSpec{8, 9, 16, 3}), std::invalid_argument);
+}
+
+TEST(GlintLighting, InputsNameTheMaterialWhoseMapCannotJoinTheArray) {
+  // Every map of a scene goes into one texture array: a second size is an error naming the material;
+  // the material rows carry the lobes' zonal factors, zero beyond each lobe's band limit.
+  shadetwin::Scene scene;
+  scene.technique = "glints";
+  scene.glintOrder = 24, scene.glintViewRings = 3, scene.glintViewSectors = 4;
+  shadetwin::Material a, b;
+  a.name = "wide", b.name = "narrow";
+  a.glints = b.glints = true;
+  a.glintMap = "bumps", a.glintMapSize = 32, a.glintSigma = 0.3f;
+  b.glintMap = "flakes", b.glintMapSize = 32, b.glintSigma = 0.1f;
+  scene.materials = {a, b};
+  std::vector<float> px(16 * 8 * 4, 1.0f);
+  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, 16, 8, px.data());
+  const shadetwin::GlintInputs in = shadetwin::glintInputsEmu(scene, env, emu::lavapipeProfile());
+  EXPECT_EQ(in.maps, 2u);
+  EXPECT_EQ(in.order, std::min(24u, shadetwin::gaussianLobeBandLimit(0.1, 1e-6, 24)));
+  const uint32_t limWide = shadetwin::gaussianLobeBandLimit(0.3, 1e-6, 24);
+  ASSERT_LT(limWide, in.order);
+  EXPECT_GT(in.materials->loadFloat(0, 0, 6 + limWide, 0).r, 0.0f);
+  EXPECT_EQ(in.materials->loadFloat(0, 0, 6 + limWide + 1, 0).r, 0.0f);  // beyond the wide lobe's band limit
+  EXPECT_GT(in.materials->loadFloat(0, 0, 6 + in.order, 1).r, 0.0f);
+  scene.materials[1].glintMapSize = 64;
+  try {
+    shadetwin::glintInputsEmu(scene, env, emu::lavapipeProfile());
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("material 'narrow'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("64x64"), std::string::npos) << e.what();
+  }
 }

@@ -218,3 +218,36 @@ TEST(Mesh, GltfRoundTripMinimal) {
 }
 
 }  // namespace
+
+TEST(Scene, GlintsBlocks) {
+  const shadetwin::Scene g = shadetwin::loadScene(src("scenes/glints.json"));
+  EXPECT_EQ(g.technique, "glints");
+  EXPECT_EQ(g.glintOrder, 16u);
+  EXPECT_NEAR(g.glintThetaMax, 40.0f * 3.14159265f / 180.0f, 1e-6f);
+  ASSERT_EQ(g.materials.size(), 3u);
+  EXPECT_TRUE(g.materials[0].glints);
+  EXPECT_EQ(g.materials[0].glintMap, "flakes");
+  EXPECT_EQ(g.materials[1].glintMap, "scratches");
+  EXPECT_FLOAT_EQ(g.materials[1].glintSigma, 0.05f);
+  EXPECT_FLOAT_EQ(g.materials[2].glintEta[0], 2.87f);
+  const std::string base = R"("camera": {"eye": [0, 0, 3], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/forest.exr"}, "objects": [{"mesh": "sphere", "material": "m"}])";
+  auto scene = [&](const std::string& name, const std::string& extra, const std::string& mat) {
+    return writeTemp(name, "{" + base + extra + R"(, "materials": [{"name": "m")" + mat + "}]}");
+  };
+  std::string p = scene("gl1.json", R"(, "technique": "glints")", "");
+  EXPECT_NE(errorOf(p).find("materials[0].glints"), std::string::npos) << errorOf(p);
+  EXPECT_NE(errorOf(p).find("material 'm' has no glints block"), std::string::npos) << errorOf(p);
+  p = scene("gl2.json", R"(, "technique": "glints", "glints": {"sectors": 12})", R"(, "glints": {"map": "flat"})");
+  EXPECT_NE(errorOf(p).find("glints.sectors: expected a multiple of 8"), std::string::npos) << errorOf(p);
+  p = scene("gl3.json", R"(, "technique": "glints")", R"(, "glints": {"map": "no_such_map.png"})");
+  EXPECT_NE(errorOf(p).find("materials[0].glints.map"), std::string::npos) << errorOf(p);
+  p = scene("gl4.json", R"(, "technique": "glints")", R"(, "glints": {"sigma": 0})");
+  EXPECT_NE(errorOf(p).find("materials[0].glints.sigma"), std::string::npos) << errorOf(p);
+  p = scene("gl5.json", R"(, "technique": "glints")", R"(, "glints": {"colour": 1})");
+  EXPECT_NE(errorOf(p).find("materials[0].glints.colour: unknown key"), std::string::npos) << errorOf(p);
+  const shadetwin::Scene ok = shadetwin::loadScene(scene("gl6.json", R"(, "technique": "glints", "glints": {"order": 8, "view_rings": 9})",
+                                                        R"(, "glints": {"map": "bumps", "size": 64, "scale": 2})"));
+  EXPECT_EQ(ok.glintOrder, 8u);
+  EXPECT_EQ(ok.glintViewRings, 9u);
+  EXPECT_EQ(ok.materials[0].glintMapSize, 64u);
+}
