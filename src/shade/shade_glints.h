@@ -3,7 +3,7 @@
 // the bin's direction in world space through the pixel's tangent frame: D_lm += (count / area) k_l
 // Y_lm(d_b)), dotted with the half-vector lighting's SH interpolated between the four table views
 // around wo, times F G / (4 cos_o) at the macro normal:
-//   L_o = F(wo.n) G1(wo) G1(r) / (4 cos_o) * sum_lm Lambda_lm(wo) D_lm,   r = reflect(wo, n).
+//   L_o = F(wo.n) G1(wo) G1(r) / (4 cos_o) * max(0, sum_lm Lambda_lm(wo) D_lm),   r = reflect(wo, n).
 // Bins no lane of the vector has are skipped (IF_ANY); loops run to the frame's degree `order`
 // (each lane's k_l is 0 beyond its lobe's band limit). Background pixels: the environment along the
 // camera ray. Dialect only.
@@ -126,7 +126,9 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
   PRECISE Float g1o = smithG1Beckmann(cosO, alpha);
   PRECISE Float G = g1o * g1o;
   PRECISE Float scale = exDiv(G, 4.0f * max(cosO, 1e-6f));
-  PRECISE Float3 rad = Float3(sum.x * F.x, sum.y * F.y, sum.z * F.z) * scale;
+  // The truncated series of a narrow lobe against a sun rings below zero (order 16 against a lobe
+  // that needs ~100 at 1e-6): radiance is clamped at 0, the ringing stays visible as dark patches.
+  PRECISE Float3 rad = Float3(max(sum.x * F.x, 0.0f), max(sum.y * F.y, 0.0f), max(sum.z * F.z, 0.0f)) * scale;
   Float4 bg = textureLod(env, equirectUv(ray), 0.0f);
   PRECISE Float3 col = select(geometry, select(lit, rad, Float3(Float(0.0f), Float(0.0f), Float(0.0f))), Float3(bg.x, bg.y, bg.z));
   col = col * intensity;
