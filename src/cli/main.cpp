@@ -119,7 +119,8 @@ int main(int argc, char** argv) {
   sweep->add_option("--technique", so.techniques, "comma-separated: fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis");
   sweep->add_option("--blocks", so.blocks, "kd-tree blocks of the *-mis techniques (default: the scene's)")->check(CLI::Range(1, 1 << 20));
   sweep->add_option("--maps", so.maps, "with a *-mis technique: environment maps (assets/hdri/NAME.exr) of the sampler study");
-  sweep->add_option("--samples", so.samples, "comma-separated sample counts");
+  sweep->add_option("--samples", so.samples, "comma-separated sample counts (glints: the G x D baseline's sample pairs)");
+  sweep->add_option("--glint-orders", so.glintOrders, "with --technique glints: comma-separated SH degrees (<= 32)");
   sweep->add_option("--reference", so.reference, "reference EXR (default: render it)");
   sweep->add_option("--reference-spp", so.referenceSpp, "samples per pixel of the rendered reference")->check(CLI::Range(1, 1 << 20));
   sweep->add_option("--out", so.out, "output folder");

@@ -95,6 +95,7 @@ void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::De
 }  // namespace
 
 int sweepCommand(const SweepOptions& opts, std::ostream& log) {
+  if (opts.techniques == "glints") return glintsSweep(opts, log);
   Scene scene = loadScene(opts.scene);
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
@@ -108,9 +109,9 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
     samples.push_back(uint32_t(v));
   }
   for (const std::string& t : techniques)
-    if (!isTechnique(t) || t == "mirror")
+    if (!isTechnique(t) || t == "mirror" || t == "glints")
       throw std::invalid_argument("--technique: '" + t +
-                                  "' is not a sampling technique (fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis)");
+                                  "' is not a sampling technique (fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis; glints alone runs the glints study)");
   if (techniques.empty() || samples.empty()) throw std::invalid_argument("sweep: no techniques or no sample counts");
   std::vector<uint32_t> visMaps;
   for (const std::string& s : splitList(opts.visMaps)) {

@@ -33,7 +33,14 @@ struct SweepOptions {
   // at the scene's sample count, against a reference with visibility; writes visibility.csv.
   std::string visMaps;
   uint32_t visRays = 10000;  // the per-pixel Embree SH fit (the best an order-4 SH can do); 0: skip
+  // Glints study (issue 17, --technique glints): SH degrees of the technique; --samples is then the
+  // G x D baseline's sample ladder and --reference-spp its reference (cli/sweep_glints.cpp).
+  std::string glintOrders = "4,8,16,32";
 };
+
+/// The glints study (sweep --technique glints): glints per degree and G x D per sample count against a
+/// G x D reference; glints.csv, rmse_vs_time.png, the line "glints speed-up at equal error: Sx".
+int glintsSweep(const SweepOptions& opts, std::ostream& log);
 
 int sweepCommand(const SweepOptions& opts, std::ostream& log);
 

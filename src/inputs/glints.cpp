@@ -17,7 +17,9 @@ namespace shadetwin {
 
 namespace {
 
-NormalMap mapOf(const Material& m) {
+}  // namespace
+
+NormalMap glintMaterialMap(const Material& m) {
   static const std::map<std::string, NormalMapKind> kinds{{"flat", NormalMapKind::Flat},
                                                           {"flakes", NormalMapKind::Flakes},
                                                           {"scratches", NormalMapKind::Scratches},
@@ -30,6 +32,8 @@ NormalMap mapOf(const Material& m) {
   s.cells = std::max(1u, s.size / 16);
   return generateNormalMap(s);
 }
+
+namespace {
 
 // Everything but the lighting table (the same on both builds).
 GlintInputs common(const Scene& scene, const emu::Texture& env) {
@@ -47,7 +51,7 @@ GlintInputs common(const Scene& scene, const emu::Texture& env) {
     if (it == index.end()) {
       NormalMap nm;
       try {
-        nm = mapOf(m);
+        nm = glintMaterialMap(m);
       } catch (const std::exception& e) {
         throw std::invalid_argument("material '" + m.name + "': glints map: " + e.what());
       }

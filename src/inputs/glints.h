@@ -11,6 +11,7 @@
 #include "emu/texture.h"
 #include "inputs/glint_lighting.h"
 #include "inputs/ndf_histogram.h"
+#include "inputs/normal_map.h"
 #include "scene/scene.h"
 
 namespace shadetwin {
@@ -29,6 +30,9 @@ struct GlintInputs {
   size_t satBytes = 0, lightingBytes = 0;
   double satMs = 0, lightingMs = 0;
 };
+
+/// A glint material's normal map (generated from its spec or loaded from its file).
+NormalMap glintMaterialMap(const Material& m);
 
 /// Throws std::invalid_argument naming the material when its map cannot be generated or loaded, or
 /// when the scene's maps differ in size (one texture array holds them all).

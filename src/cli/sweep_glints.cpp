@@ -1,0 +1,198 @@
+// `shadetwin sweep --technique glints` (issue 17): glints against its ground truth, the G x D
+// baseline (reference/glints_gxd.h), per SH degree, and G x D itself against sample count; the speed
+// of glints against the time G x D needs for the same error, measured in one run.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include <tbb/parallel_for.h>
+
+#include "cli/sweep.h"
+#include "inputs/environment.h"
+#include "inputs/glints.h"
+#include "lanes/instantiate.h"
+#include "passes/gbuffer.h"
+#include "passes/passes_vk.h"
+#include "passes/shade.h"
+#include "reference/glints_gxd.h"
+#include "util/compare.h"
+#include "util/plot.h"
+#include "util/timer.h"
+#include "vk/context.h"
+
+namespace shadetwin {
+
+namespace {
+std::vector<uint32_t> counts(const std::string& list, const char* what, uint32_t lo, uint32_t hi) {
+  std::vector<uint32_t> v;
+  std::stringstream ss(list);
+  std::string s;
+  while (std::getline(ss, s, ',')) {
+    char* end = nullptr;
+    const unsigned long x = std::strtoul(s.c_str(), &end, 10);
+    if (s.empty() || *end || x < lo || x > hi)
+      throw std::invalid_argument(std::string(what) + ": '" + s + "' is not in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    v.push_back(uint32_t(x));
+  }
+  return v;
+}
+}  // namespace
+
+int glintsSweep(const SweepOptions& opts, std::ostream& log) {
+  Scene scene = loadScene(opts.scene);
+  if (opts.width) scene.width = opts.width;
+  if (opts.height) scene.height = opts.height;
+  scene.technique = "glints";
+  if (!std::all_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.glints; }))
+    throw std::invalid_argument("sweep --technique glints: every material of " + opts.scene + " needs a glints block");
+  const std::vector<uint32_t> ladder = counts(opts.samples, "--samples (G x D sample pairs)", 1, 1 << 20);
+  const std::vector<uint32_t> orders = counts(opts.glintOrders, "--glint-orders", 0, 32);
+  std::filesystem::create_directories(opts.out);
+  std::ostringstream quiet;
+  EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+  log << "sweep " << opts.scene << " (glints): " << scene.width << "x" << scene.height << ", " << scene.environment << "\n";
+  const emu::DeviceProfile* dev = &emu::lavapipeProfile();
+  std::unique_ptr<vk::Context> ctx;
+  GBuffer gv;
+  if (opts.vulkan) {
+    vk::ContextOptions co;
+    co.device = opts.device;
+    ctx = std::make_unique<vk::Context>(co);
+    dev = &emu::profileForDevice(ctx->deviceName());
+    gv = gbufferVulkan(*ctx, scene);
+    log << "  Vulkan device " << ctx->deviceName() << " (profile " << dev->name << ")\n";
+  }
+  const GBuffer g = gbufferEmu(scene, *dev);
+  const size_t n = size_t(g.width) * g.height;
+  std::vector<uint8_t> covered(n);
+  for (size_t p = 0; p < n; ++p) covered[p] = g.texels[p * kGbufFloats + 3] != 0.0f;
+  log << "  metrics over the " << std::count(covered.begin(), covered.end(), 1) << " covered pixels\n";
+
+  // G x D: every material's map and its min-max hierarchy; each pixel's frame and footprint as the
+  // kernel forms them (the footprint by the shared glintFootprint on the same floats).
+  std::vector<NormalMap> maps;
+  std::vector<NormalBounds> bounds;
+  for (const Material& m : scene.materials) maps.push_back(glintMaterialMap(m));
+  for (const NormalMap& m : maps) bounds.push_back(normalBounds(m));
+  const reference::Environment renv(EnvImage{env.width, env.height, env.levels[0].data()}, scene.environmentIntensity);
+  const CameraRays cam = cameraRays(scene);
+  auto pixel = [&](size_t p) {
+    const float* t = g.texels.data() + p * kGbufFloats;
+    const uint32_t slot = shade::scalar::materialSlot(t[3], uint32_t(scene.materials.size()));
+    const Material& m = scene.materials[slot];
+    GlintPixel px;
+    px.map = &maps[slot], px.bounds = &bounds[slot], px.pixel = p;
+    px.n = reference::normalize({t[4], t[5], t[6]});
+    const reference::D3 tg{t[8], t[9], t[10]};
+    reference::D3 tp = tg - px.n * dot(px.n, tg);
+    if (dot(tp, tp) <= 1e-12) tp = std::fabs(px.n.x) < 0.9 ? reference::D3{0, -px.n.z, px.n.y} : reference::D3{-px.n.z, 0, px.n.x};
+    px.t = reference::normalize(tp);
+    px.b = cross(px.n, px.t) * (t[3] < 0 ? -1.0 : 1.0);
+    px.wo = reference::normalize(reference::D3{cam.eye[0] - t[0], cam.eye[1] - t[1], cam.eye[2] - t[2]});
+    const shade::scalar::GlintBox box = shade::scalar::glintFootprint(t[7], t[11], shade::V4<float>(t[12], t[13], t[14], t[15]),
+                                                                      float(double(maps[slot].width) * m.glintScale));
+    px.x0 = box.x0, px.y0 = box.y0, px.x1 = box.x1, px.y1 = box.y1;
+    px.sigma = m.glintSigma;
+    for (int c = 0; c < 3; ++c) px.eta[c] = m.glintEta[size_t(c)], px.k[c] = m.glintK[size_t(c)];
+    return px;
+  };
+  auto gxdImage = [&](uint32_t samples, uint64_t seed) {
+    std::vector<float> img(4 * n, 0.0f);
+    tbb::parallel_for(size_t(0), n, [&](size_t p) {
+      img[4 * p + 3] = 1.0f;
+      if (!covered[p]) return;
+      const GxdResult r = glintGxd(pixel(p), renv, samples, seed);
+      for (int c = 0; c < 3; ++c) img[4 * p + size_t(c)] = float(r.rgb[c]);
+    });
+    return img;
+  };
+  const std::string csvPath = (std::filesystem::path(opts.out) / "glints.csv").string();
+  std::ofstream csv(csvPath);
+  if (!csv) throw std::runtime_error("sweep: cannot write " + csvPath);
+  csv << "technique,param,ms_emu,ms_vulkan,ms_inputs_emu,ms_inputs_vulkan,rmse,relmse,psnr,bit_identical,values\n";
+  log << std::fixed;
+  std::vector<float> ref;
+  const double msRef = timeMs([&] { ref = gxdImage(opts.referenceSpp, 1000003); });
+  writeExr((std::filesystem::path(opts.out) / "reference.exr").string(), g.width, g.height, ref);
+  log << "  reference: G x D, " << opts.referenceSpp << " sample pairs per pixel, " << std::setprecision(1) << msRef / 1000 << " s\n";
+  PlotSeries gxdSeries{"glints-gxd", {}, {}}, glSeries{"glints (emu)", {}, {}};
+  std::vector<double> gxdMs, gxdErr;
+  for (uint32_t N : ladder) {
+    std::vector<float> img;
+    const double ms = timeMs([&] { img = gxdImage(N, 1); });
+    const ImageMetrics m = imageMetrics(img, ref, covered);
+    csv << "glints-gxd," << N << "," << std::setprecision(2) << ms << ",,,," << std::setprecision(6) << m.rmse << "," << m.relMse << ","
+        << std::setprecision(3) << m.psnr << ",,\n";
+    log << "  glints-gxd " << std::setw(6) << N << " pairs  " << std::setprecision(1) << std::setw(9) << ms << " ms  RMSE "
+        << std::setprecision(5) << m.rmse << "  PSNR " << std::setprecision(2) << m.psnr << " dB\n";
+    gxdSeries.x.push_back(ms), gxdSeries.y.push_back(m.rmse), gxdMs.push_back(ms), gxdErr.push_back(m.rmse);
+  }
+  const uint32_t sceneOrder = scene.glintOrder;
+  double glintMsAtScene = NAN, glintInputsAtScene = NAN, glintErrAtScene = NAN;
+  for (uint32_t order : orders) {
+    scene.glintOrder = order;
+    ShadeInputs in;
+    const double msIn = timeMs([&] { in = shadeInputsEmu(scene, *env.texture, *dev); });
+    std::vector<float> img;
+    shadeEmu(scene, g, in, *dev, img);  // warm-up
+    const double ms = timeMs([&] { shadeEmu(scene, g, in, *dev, img); });
+    double msVk = NAN, msInVk = NAN;
+    size_t same = 0;
+    if (ctx) {
+      ShadeInputs iv;
+      msInVk = timeMs([&] { iv = shadeInputsVulkan(*ctx, scene, *env.texture); });
+      ShadePassVk pass(*ctx, scene, iv);
+      pass.run(gv);  // warm-up (pipeline)
+      const std::vector<float> v = pass.run(gv);
+      msVk = pass.lastMs;
+      for (size_t i = 0; i < v.size(); ++i) same += std::memcmp(&v[i], &img[i], 4) == 0;
+    }
+    const ImageMetrics m = imageMetrics(img, ref, covered);
+    csv << "glints," << order << "," << std::setprecision(2) << ms << "," << msVk << "," << msIn << "," << msInVk << ","
+        << std::setprecision(6) << m.rmse << "," << m.relMse << "," << std::setprecision(3) << m.psnr << "," << same << "," << img.size()
+        << "\n";
+    log << "  glints degree " << std::setw(2) << order << " (shading degree " << in.glints->order << ")  emu " << std::setprecision(1)
+        << ms << " ms + inputs " << msIn << " ms";
+    if (ctx) log << ", vulkan " << msVk << " ms + inputs " << msInVk << " ms";
+    log << "  RMSE " << std::setprecision(5) << m.rmse << "  PSNR " << std::setprecision(2) << m.psnr << " dB";
+    if (ctx) log << "  " << same << "/" << img.size() << " bit-identical";
+    log << "\n";
+    glSeries.x.push_back(ms), glSeries.y.push_back(m.rmse);
+    if (order == sceneOrder) glintMsAtScene = ms, glintInputsAtScene = msIn, glintErrAtScene = m.rmse;
+  }
+  // Speed at equal error: the G x D time for glints' error at the scene's degree, on the ladder's
+  // log-log line (error ~ time^-1/2 beyond its ends).
+  if (!std::isnan(glintErrAtScene) && !gxdMs.empty()) {
+    double tEq = NAN;
+    bool extrapolated = true;
+    for (size_t i = 0; i + 1 < gxdMs.size(); ++i)
+      if ((gxdErr[i] - glintErrAtScene) * (gxdErr[i + 1] - glintErrAtScene) <= 0 && gxdErr[i] != gxdErr[i + 1]) {
+        const double a = (std::log(glintErrAtScene) - std::log(gxdErr[i])) / (std::log(gxdErr[i + 1]) - std::log(gxdErr[i]));
+        tEq = std::exp(std::log(gxdMs[i]) + a * (std::log(gxdMs[i + 1]) - std::log(gxdMs[i])));
+        extrapolated = false;
+        break;
+      }
+    if (std::isnan(tEq)) {
+      const size_t k = glintErrAtScene < gxdErr.back() ? gxdErr.size() - 1 : 0;
+      tEq = gxdMs[k] * std::pow(gxdErr[k] / glintErrAtScene, 2.0);
+    }
+    log << "  at degree " << sceneOrder << ": glints RMSE " << std::setprecision(5) << glintErrAtScene << " in " << std::setprecision(1)
+        << glintMsAtScene << " ms (+ " << glintInputsAtScene << " ms of tables); G x D needs " << tEq << " ms for it"
+        << (extrapolated ? " (extrapolated at error ~ time^-1/2)" : "") << "\n";
+    log << "glints speed-up at equal error: " << std::setprecision(1) << tEq / glintMsAtScene << "x (with the tables' build: "
+        << tEq / (glintMsAtScene + glintInputsAtScene) << "x)\n";
+  }
+  const std::string p = (std::filesystem::path(opts.out) / "rmse_vs_time.png").string();
+  const std::string w = writeLogLogPlot(p, {gxdSeries, glSeries}, {"RMSE vs emulator time, glints vs G x D", "ms per frame (emu)", "RMSE", false});
+  if (!w.empty()) log << "  warning: " << w << "\n";
+  log << "wrote " << csvPath << ", " << p << "\n";
+  return 0;
+}
+
+}  // namespace shadetwin
