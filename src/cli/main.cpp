@@ -121,6 +121,8 @@ int main(int argc, char** argv) {
   sweep->add_option("--maps", so.maps, "with a *-mis technique: environment maps (assets/hdri/NAME.exr) of the sampler study");
   sweep->add_option("--samples", so.samples, "comma-separated sample counts (glints: the G x D baseline's sample pairs)");
   sweep->add_option("--glint-orders", so.glintOrders, "with --technique glints: comma-separated SH degrees (<= 32)");
+  sweep->add_option("--glint-bins", so.glintBins,
+                    "with --technique glints: comma-separated histogram binnings RINGSxSECTORS@THETAMAX (degrees), e.g. 9x32@40,18x32@40");
   sweep->add_option("--reference", so.reference, "reference EXR (default: render it)");
   sweep->add_option("--reference-spp", so.referenceSpp, "samples per pixel of the rendered reference")->check(CLI::Range(1, 1 << 20));
   sweep->add_option("--out", so.out, "output folder");

@@ -35,7 +35,9 @@ struct SweepOptions {
   uint32_t visRays = 10000;  // the per-pixel Embree SH fit (the best an order-4 SH can do); 0: skip
   // Glints study (issue 17, --technique glints): SH degrees of the technique; --samples is then the
   // G x D baseline's sample ladder and --reference-spp its reference (cli/sweep_glints.cpp).
-  std::string glintOrders = "4,8,16,32";
+  std::string glintOrders = "4,8,16,20";
+  // ... and histogram binnings RINGSxSECTORS@THETAMAX_DEGREES (e.g. 9x32@40,18x32@40) at the scene's degree.
+  std::string glintBins;
 };
 
 /// The glints study (sweep --technique glints): glints per degree and G x D per sample count against a

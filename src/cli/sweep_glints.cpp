@@ -2,6 +2,7 @@
 // baseline (reference/glints_gxd.h), per SH degree, and G x D itself against sample count; the speed
 // of glints against the time G x D needs for the same error, measured in one run.
 #include <algorithm>
+#include <cstdio>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -167,6 +168,28 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
     log << "\n";
     glSeries.x.push_back(ms), glSeries.y.push_back(m.rmse);
     if (order == sceneOrder) glintMsAtScene = ms, glintInputsAtScene = msIn, glintErrAtScene = m.rmse;
+  }
+  // The histogram's binning at the scene's degree (the paper's Figs. 11, 15): error against the same reference.
+  scene.glintOrder = sceneOrder;
+  std::stringstream bl(opts.glintBins);
+  std::string spec;
+  while (std::getline(bl, spec, ',')) {
+    unsigned rings = 0, sectors = 0;
+    float theta = 0;
+    if (std::sscanf(spec.c_str(), "%ux%u@%f", &rings, &sectors, &theta) != 3 || rings < 1 || rings > 16 || sectors < 8 ||
+        sectors > 64 || sectors % 8 || !(theta > 0 && theta <= 180))
+      throw std::invalid_argument("--glint-bins: '" + spec + "' is not RINGSxSECTORS@THETAMAX (rings 1-16, sectors 8-64 by 8, degrees)");
+    Scene sb = scene;
+    sb.glintRings = rings, sb.glintSectors = sectors, sb.glintThetaMax = theta * 3.14159265f / 180.0f;
+    const ShadeInputs in = shadeInputsEmu(sb, *env.texture, *dev);
+    std::vector<float> img;
+    const double ms = timeMs([&] { shadeEmu(sb, g, in, *dev, img); });
+    const ImageMetrics m = imageMetrics(img, ref, covered);
+    csv << "glints-bins," << spec << "," << std::setprecision(2) << ms << ",,,," << std::setprecision(6) << m.rmse << "," << m.relMse
+        << "," << std::setprecision(3) << m.psnr << ",," << in.glints->satBytes << "\n";
+    log << "  glints bins " << std::setw(10) << spec << " (degree " << sceneOrder << ")  emu " << std::setprecision(1) << ms
+        << " ms  SATs " << in.glints->satBytes / (1 << 20) << " MiB  RMSE " << std::setprecision(5) << m.rmse << "  PSNR "
+        << std::setprecision(2) << m.psnr << " dB\n";
   }
   // Speed at equal error: the G x D time for glints' error at the scene's degree, on the ladder's
   // log-log line (error ~ time^-1/2 beyond its ends).
