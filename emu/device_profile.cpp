@@ -21,7 +21,8 @@ const DeviceProfile& lavapipeProfile() {
        DeviceProfile::Raster::Clip::DrawModule, /*clipFromNearer=*/true, /*clipViewportFma=*/false,
        /*verified=*/true},
       DeviceProfile::ImplicitLod::FastLog2PerQuad, /*implicitLodVerified=*/true,  // verify texture --implicit-lod
-      /*implicitNearestShortcut=*/true};
+      /*implicitNearestShortcut=*/true,
+      /*loopIterationLimit=*/65535};  // gallivm lp_bld_limits.h; the glints lighting table's partial sums past it
   return p;
 }
 
@@ -36,7 +37,8 @@ const DeviceProfile& nvidiaProfile() {
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
        DeviceProfile::Raster::Clip::GuardBand, /*clipFromNearer=*/false, /*clipViewportFma=*/true,
        /*verified=*/false},
-      DeviceProfile::ImplicitLod::Exact, /*implicitLodVerified=*/false, /*implicitNearestShortcut=*/false};
+      DeviceProfile::ImplicitLod::Exact, /*implicitLodVerified=*/false, /*implicitNearestShortcut=*/false,
+      /*loopIterationLimit=*/0};
   return p;
 }
 
@@ -81,6 +83,8 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
     p.lodFractionBits = parseInt(key, v, 0, 23);
   } else if (key == "unorm8FixedPoint") {
     p.unorm8FixedPoint = parseBool(key, v);
+  } else if (key == "loopIterationLimit") {
+    p.loopIterationLimit = uint32_t(parseInt(key, v, 0, 1 << 30));
   } else if (key == "denormCompute") {
     p.denormCompute = parseDenorm(key, v);
   } else if (key == "denormFragment") {
@@ -89,7 +93,7 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
     throw std::invalid_argument("unknown profile field '" + std::string(key) +
                                 "' (known: maskedFragmentLanes, implicitNearestShortcut, computeVectorLanes, "
                                 "fragmentVectorW, fragmentVectorH, filterWeightFracBits, lodFractionBits, "
-                                "unorm8FixedPoint, denormCompute, denormFragment)");
+                                "unorm8FixedPoint, denormCompute, denormFragment, loopIterationLimit)");
   }
   p.verified = false;
   p.name += " [" + std::string(key) + "=" + std::string(v) + "]";

@@ -66,6 +66,11 @@ struct DeviceProfile {
   // The two differ where rho^2 = 2^(4j+1) (the LOD's tie j + 1/2 rounds to even). Measured with
   // `verify texture --implicit-lod` (docs/DESIGN.md s3, issue 14).
   bool implicitNearestShortcut;
+  // Loop back-edges one shader invocation may take, all loops together (0: unlimited). lavapipe:
+  // gallivm's loop limiter, LP_MAX_TGSI_LOOP_ITERATIONS = 65535, shared by every loop of a function;
+  // past it every loop exits, so a kernel that loops longer returns partial sums (measured with the
+  // glints lighting table: docs/RESULTS.md). Drivers split such work so no invocation reaches it.
+  uint32_t loopIterationLimit;
   DenormMode denorm(Stage s) const { return s == Stage::Compute ? denormCompute : denormFragment; }
 };
 
@@ -76,7 +81,7 @@ const DeviceProfile& profileByName(std::string_view name);
 /// Sets one field by name to an alternative value ("maskedFragmentLanes" = sample|skip,
 /// "implicitNearestShortcut" = true|false, "computeVectorLanes", "fragmentVectorW", "fragmentVectorH" =
 /// integer, "filterWeightFracBits", "lodFractionBits" = integer, "unorm8FixedPoint" = true|false,
-/// "denormCompute", "denormFragment" = preserve|flush), to measure what the profile's choice is worth.
+/// "denormCompute", "denormFragment" = preserve|flush, "loopIterationLimit" = integer), to measure what the profile's choice is worth.
 /// The profile is then marked unverified. Throws std::invalid_argument naming the key or the value.
 void setProfileField(DeviceProfile& p, std::string_view key, std::string_view value);
 /// "KEY=VALUE" form of setProfileField.

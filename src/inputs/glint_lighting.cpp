@@ -1,5 +1,6 @@
 #include "inputs/glint_lighting.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -24,10 +25,10 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 struct LightingPush {
-  int32_t envW, envH, level, order;
+  int32_t envW, y0, y1, level, order;
   uint32_t views, count;
 };
-static_assert(sizeof(LightingPush) == 24, "LightingPush must match the push block of glint_lighting.comp");
+static_assert(sizeof(LightingPush) == 28, "LightingPush must match the push block of glint_lighting.comp");
 
 void check(const emu::Texture& env, const GlintLightingSpec& s) {
   if (env.format() != emu::Format::RGBA32F) throw std::invalid_argument("glint lighting: the environment must be RGBA32F");
@@ -38,20 +39,31 @@ void check(const emu::Texture& env, const GlintLightingSpec& s) {
                                 std::to_string(env.levelCount()) + ")");
 }
 
-// Column m of view v from the kernel's output into the table.
+// Column m of view v from the kernel's output into the table: stored for the first band, added for
+// the next ones (band order, the same on both builds).
 template <class Get>
-void storeColumn(GlintLightingTable& t, uint32_t view, uint32_t m, Get get) {
+void storeColumn(GlintLightingTable& t, uint32_t view, uint32_t m, bool first, Get get) {
+  auto put = [&](float* c, uint32_t i) {
+    for (int ch = 0; ch < 3; ++ch) c[ch] = first ? get(i + uint32_t(ch)) : c[ch] + get(i + uint32_t(ch));
+  };
   for (uint32_t l = m; l <= t.spec.order; ++l) {
-    float* c = &t.rgba[(size_t(view) * t.coeffs + l * l + l + m) * 4];
-    for (int ch = 0; ch < 3; ++ch) c[ch] = get(6 * (l - m) + uint32_t(ch));
-    if (m > 0) {
-      float* s = &t.rgba[(size_t(view) * t.coeffs + l * l + l - m) * 4];
-      for (int ch = 0; ch < 3; ++ch) s[ch] = get(6 * (l - m) + 3 + uint32_t(ch));
-    }
+    put(&t.rgba[(size_t(view) * t.coeffs + l * l + l + m) * 4], 6 * (l - m));
+    if (m > 0) put(&t.rgba[(size_t(view) * t.coeffs + l * l + l - m) * 4], 6 * (l - m) + 3);
   }
 }
 
+uint32_t bandRowsOf(const GlintLightingSpec& s, uint32_t h) { return s.bandRows == 0 ? h : std::min(h, s.bandRows); }
+
 }  // namespace
+
+uint32_t glintBandRows(uint32_t loopLimit, uint32_t w, uint32_t h, uint32_t order) {
+  if (loopLimit == 0) return 0;
+  // Measured on lavapipe (the boundary of texels x (order + a) at the limit: a = 4..6; the exact-math
+  // loops of fixed count are unrolled and take none): order + 8 per texel, with a margin.
+  const uint64_t fixed = 6 * uint64_t(order + 1) + 400, perRow = uint64_t(w) * (order + 8) + 2;
+  if (loopLimit <= fixed + perRow) return 1;
+  return uint32_t(std::min<uint64_t>(h, (loopLimit - fixed) / perRow));
+}
 
 std::vector<float> glintViewDirections(const GlintLightingSpec& s) {
   std::vector<float> d(size_t(s.rings) * s.sectors * 4, 0.0f);
@@ -91,20 +103,25 @@ GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DevicePr
   const uint32_t blocks = (views + 7) / 8;
   // Lanes: 8 consecutive views of one column m (a device vector of the compute kernel, whose
   // invocations run m-major), tail lanes repeat the last view.
-  tbb::parallel_for(tbb::blocked_range2d<uint32_t>(0, spec.order + 1, 1, 0, blocks, 4), [&](const tbb::blocked_range2d<uint32_t>& r) {
-    emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
-    for (uint32_t m = r.rows().begin(); m < r.rows().end(); ++m)
-      for (uint32_t b = r.cols().begin(); b < r.cols().end(); ++b) {
-        shade::V3<F> wo;
-        for (int l = 0; l < 8; ++l) {
-          const uint32_t v = std::min(views - 1, b * 8 + uint32_t(l));
-          wo.x.set(l, vd[4 * v]), wo.y.set(l, vd[4 * v + 1]), wo.z.set(l, vd[4 * v + 2]);
+  const uint32_t rows = bandRowsOf(spec, eh);
+  for (uint32_t y0 = 0; y0 < eh; y0 += rows) {  // bands in order, each added into the table
+    const uint32_t y1 = std::min(eh, y0 + rows);
+    tbb::parallel_for(tbb::blocked_range2d<uint32_t>(0, spec.order + 1, 1, 0, blocks, 4), [&](const tbb::blocked_range2d<uint32_t>& r) {
+      emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
+      for (uint32_t m = r.rows().begin(); m < r.rows().end(); ++m)
+        for (uint32_t b = r.cols().begin(); b < r.cols().end(); ++b) {
+          shade::V3<F> wo;
+          for (int l = 0; l < 8; ++l) {
+            const uint32_t v = std::min(views - 1, b * 8 + uint32_t(l));
+            wo.x.set(l, vd[4 * v]), wo.y.set(l, vd[4 * v + 1]), wo.z.set(l, vd[4 * v + 2]);
+          }
+          const auto col = shade::x8::glintLightingColumn(es, ds, cs, int(ew), int(y0), int(y1), int(spec.level), int(spec.order),
+                                                          int(m), wo);
+          for (int l = 0; l < 8 && b * 8 + uint32_t(l) < views; ++l)
+            storeColumn(t, b * 8 + uint32_t(l), m, y0 == 0, [&](uint32_t i) { return col.c[i][l]; });
         }
-        const auto col = shade::x8::glintLightingColumn(es, ds, cs, int(ew), int(eh), int(spec.level), int(spec.order), int(m), wo);
-        for (int l = 0; l < 8 && b * 8 + uint32_t(l) < views; ++l)
-          storeColumn(t, b * 8 + uint32_t(l), m, [&](uint32_t i) { return col.c[i][l]; });
-      }
-  });
+    });
+  }
   t.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return t;
 }
@@ -129,17 +146,21 @@ GlintLightingTable glintLightingVulkan(vk::Context& ctx, const emu::Texture& env
                                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                   VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   vk::Kernel kernel(ctx, vk::Stage::Compute, kSpv_glint_lighting_comp, kLayout, sizeof(LightingPush));
-  const LightingPush push{int32_t(ew), int32_t(eh), int32_t(spec.level), int32_t(spec.order), views, count};
   const vk::Binding b[5] = {{kLayout[0], VK_NULL_HANDLE, envImg.view(), sampler.handle()},
                             {kLayout[1], VK_NULL_HANDLE, dirImg.view(), sampler.handle()},
                             {kLayout[2], VK_NULL_HANDLE, coefImg.view(), sampler.handle()},
                             {kLayout[3], viewBuf.handle()},
                             {kLayout[4], out.handle()}};
-  kernel.run(b, &push, count);
-  const float* o = out.as<float>();
-  for (uint32_t i = 0; i < count; ++i) {
-    const uint32_t m = i / views, v = i % views;
-    storeColumn(t, v, m, [&](uint32_t k) { return o[size_t(i) * col + k]; });
+  const uint32_t rows = bandRowsOf(spec, eh);
+  for (uint32_t y0 = 0; y0 < eh; y0 += rows) {  // one dispatch per band, added in order
+    const uint32_t y1 = std::min(eh, y0 + rows);
+    const LightingPush push{int32_t(ew), int32_t(y0), int32_t(y1), int32_t(spec.level), int32_t(spec.order), views, count};
+    kernel.run(b, &push, count);
+    const float* o = out.as<float>();
+    for (uint32_t i = 0; i < count; ++i) {
+      const uint32_t m = i / views, v = i % views;
+      storeColumn(t, v, m, y0 == 0, [&](uint32_t k) { return o[size_t(i) * col + k]; });
+    }
   }
   t.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return t;

@@ -19,7 +19,15 @@ struct GlintLightingSpec {
   uint32_t rings = 65;      // view directions in theta (poles included)
   uint32_t sectors = 128;   // in phi
   uint32_t level = 0;       // environment MIP level summed (its texels are the quadrature)
+  // Rows of the level one kernel invocation sums (a band; 0: all). The bands' sums are added on the
+  // host in band order, the same on both builds. glintBandRows picks it from a device's loop limit.
+  uint32_t bandRows = 0;
 };
+
+/// Band rows for a device whose invocations may take `loopLimit` loop back-edges (0: unlimited): the
+/// kernel takes about rows w (order + 5) + 6 (order + 1) of them for a level w texels wide (measured; the
+/// bands keep rows w (order + 8) + 6 (order + 1) + 400 below the limit).
+uint32_t glintBandRows(uint32_t loopLimit, uint32_t levelWidth, uint32_t levelHeight, uint32_t order);
 
 struct GlintLightingTable {
   GlintLightingSpec spec;

@@ -12,12 +12,18 @@
 #include "inputs/glint_tables.h"
 #include "inputs/normal_map.h"
 #include "inputs/sh_legendre.h"
+#include "vk/context.h"
 
 namespace shadetwin {
 
 namespace {
 
 }  // namespace
+
+uint64_t glintShadeLoopBound(uint32_t order, uint32_t rings, uint32_t sectors) {
+  const uint64_t M = order + 1, T = rings, P = sectors, G = (sectors + 7) / 8;
+  return 2 * M * M + M + T + 9 * T * G + T * P * (M + M * (M + 1) / 2);
+}
 
 NormalMap glintMaterialMap(const Material& m) {
   static const std::map<std::string, NormalMapKind> kinds{{"flat", NormalMapKind::Flat},
@@ -125,14 +131,22 @@ void attachLighting(GlintInputs& in, const GlintLightingTable& t) {
 
 }  // namespace
 
+// The lighting table's bands for the device the inputs are built for (its loop limit).
+void bands(GlintInputs& in, const emu::Texture& env, const emu::DeviceProfile& dev) {
+  in.lightingSpec.bandRows = glintBandRows(dev.loopIterationLimit, env.levelWidth(in.lightingSpec.level),
+                                           env.levelHeight(in.lightingSpec.level), in.lightingSpec.order);
+}
+
 GlintInputs glintInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
   GlintInputs in = common(scene, env);
+  bands(in, env, dev);
   attachLighting(in, glintLightingEmu(env, dev, in.lightingSpec));
   return in;
 }
 
 GlintInputs glintInputsVulkan(vk::Context& ctx, const Scene& scene, const emu::Texture& env) {
   GlintInputs in = common(scene, env);
+  bands(in, env, emu::profileForDevice(ctx.deviceName()));
   attachLighting(in, glintLightingVulkan(ctx, env, in.lightingSpec));
   return in;
 }

@@ -31,6 +31,13 @@ struct GlintInputs {
   double satMs = 0, lightingMs = 0;
 };
 
+/// Loop back-edges one invocation of the glints shading kernel may take, at most (every bin of the
+/// footprint non-empty): 2 (M + 1)^2 + (M + 1) + T + 9 T G + T P ((M + 1) + (M + 1)(M + 2) / 2) for
+/// degree M, T rings, P sectors, G = P / 8 groups (shade/shade_glints.h's loops; the exact-math loops
+/// of fixed count are unrolled). A device with a loop limit (emu::DeviceProfile::loopIterationLimit)
+/// returns partial sums past it.
+uint64_t glintShadeLoopBound(uint32_t order, uint32_t rings, uint32_t sectors);
+
 /// A glint material's normal map (generated from its spec or loaded from its file).
 NormalMap glintMaterialMap(const Material& m);
 

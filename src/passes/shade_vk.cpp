@@ -133,6 +133,18 @@ struct ShadePassVk::Impl {
     for (size_t i = 0; i < records.size(); ++i)
       std::memcpy(materials.as<uint8_t>() + i * materialStride(), &records[i], materialStride());
     if (in.glints) {
+      // The device's loop limit bounds the kernel: refuse a degree and binning that could exceed it
+      // (lavapipe: a pixel past it gets partial sums; measured in docs/RESULTS.md).
+      const emu::DeviceProfile& prof = emu::profileForDevice(c.deviceName());
+      const uint64_t bound = glintShadeLoopBound(in.glints->order, in.glints->bins.rings, in.glints->bins.sectors);
+      if (prof.loopIterationLimit && bound > prof.loopIterationLimit) {
+        uint32_t ok = in.glints->order;
+        while (ok > 0 && glintShadeLoopBound(ok, in.glints->bins.rings, in.glints->bins.sectors) > prof.loopIterationLimit) --ok;
+        throw vk::Error("glints on " + c.deviceName() + ": degree " + std::to_string(in.glints->order) + " with " +
+                        std::to_string(in.glints->bins.rings) + " x " + std::to_string(in.glints->bins.sectors) +
+                        " bins may take " + std::to_string(bound) + " loop iterations per pixel, the device stops loops after " +
+                        std::to_string(prof.loopIterationLimit) + " (use degree <= " + std::to_string(ok) + " or fewer bins)");
+      }
       glints = in.glints;
       const emu::Texture& st = *in.glints->sat;
       glintSat = std::make_unique<vk::Image>(c, VK_FORMAT_R32G32B32A32_UINT, st.width(), st.height(), st.layers(), st.levels(), 16,

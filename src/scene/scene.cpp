@@ -253,8 +253,7 @@ Scene loadScene(const std::string& path) {
     const json& f = j["glints"];
     if (!f.is_object()) R.fail("glints", "expected an object with order, rings, sectors, theta_max, view_rings, view_sectors");
     R.keys(f, "glints", {"order", "rings", "sectors", "theta_max", "view_rings", "view_sectors"});
-    // Degree <= 20: above it lavapipe's lighting table differs from the emulator's (docs/RESULTS.md, glints).
-    s.glintOrder = uint32_t(R.number(f, "glints.order", 16, 0, 20));
+    s.glintOrder = uint32_t(R.number(f, "glints.order", 16, 0, 32));  // shade_glints.h kGlintShadeMaxOrder
     s.glintRings = uint32_t(R.number(f, "glints.rings", 9, 1, 16));
     s.glintSectors = uint32_t(R.number(f, "glints.sectors", 32, 8, 64));
     if (s.glintSectors % 8) R.fail("glints.sectors", "expected a multiple of 8 (the table packs 8 sectors per texel)");

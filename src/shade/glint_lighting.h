@@ -16,12 +16,14 @@ struct GlintColumn {
   Float c[6 * (kGlintMaxOrder + 1)];
 };
 
-GlintColumn glintLightingColumn(Sampler2D env, Sampler2D dirs, Sampler2D coef, int envW, int envH, int level, int order, int m,
-                                Float3 wo) {
+// Rows y0 .. y1 - 1 of the level (a band: the host adds the bands in order; lavapipe stops every loop
+// of an invocation after 65,535 back-edges, so the drivers keep a band's loops below that).
+GlintColumn glintLightingColumn(Sampler2D env, Sampler2D dirs, Sampler2D coef, int envW, int y0, int y1, int level, int order,
+                                int m, Float3 wo) {
   GlintColumn col;
   for (int i = 0; i < 6 * (kGlintMaxOrder + 1); ++i) col.c[i] = Float(0.0f);
   float mScale = m == 0 ? 1.0f : 1.41421356f;  // sqrt(2) for the m > 0 pair
-  for (int y = 0; y < envH; ++y) {
+  for (int y = y0; y < y1; ++y) {
     for (int x = 0; x < envW; ++x) {
       Float4 L = texelFetchUniform(env, x, y, level);
       Float4 d = texelFetchUniform(dirs, x, y, 0);

@@ -219,11 +219,13 @@ int verifyGlintLighting(const VerifyOptions& opts, std::ostream& out) {
   if (opts.glintLevel >= 0) spec.level = uint32_t(opts.glintLevel);
   else
     while (spec.level + 1 < env.texture->levelCount() && env.texture->levelWidth(spec.level) > 64) ++spec.level;
+  spec.bandRows = glintBandRows(s.dev->loopIterationLimit, env.texture->levelWidth(spec.level),
+                                env.texture->levelHeight(spec.level), spec.order);  // the device's loop limit
   const GlintLightingTable e = glintLightingEmu(*env.texture, *s.dev, spec), v = glintLightingVulkan(*s.ctx, *env.texture, spec);
   out << "environment " << s.scene.environment << " level " << spec.level << " (" << env.texture->levelWidth(spec.level) << "x"
       << env.texture->levelHeight(spec.level) << " texels) -> glint lighting table: " << spec.rings << " x " << spec.sectors
       << " views, degree " << spec.order << " (" << e.coeffs << " RGB coefficients each, " << e.bytes() / (1 << 20)
-      << " MiB); build emu " << e.buildMs << " ms, vulkan " << v.buildMs << " ms\n";
+      << " MiB; bands of " << (spec.bandRows ? spec.bandRows : env.texture->levelHeight(spec.level)) << " rows); build emu " << e.buildMs << " ms, vulkan " << v.buildMs << " ms\n";
   const std::vector<UlpTally> t = compareRgba(e.rgba, v.rgba);
   return finish("glint-lighting", printTallies(t, out), *s.ctx, opts, out);
 }
