@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "emu/device_profile.h"
@@ -97,4 +98,38 @@ TEST(GlintLighting, InputsNameTheMaterialWhoseMapCannotJoinTheArray) {
     EXPECT_NE(std::string(e.what()).find("material 'narrow'"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("64x64"), std::string::npos) << e.what();
   }
+}
+
+TEST(GlintLighting, BandsKeepEveryInvocationBelowTheDevicesLoopLimit) {
+  // lavapipe's loop limiter (emu::DeviceProfile::loopIterationLimit = 65535): a band's estimated
+  // back-edges stay below it, no limit means one band, and the banded table is the unbanded one up to
+  // float reassociation (the bands' sums are added in order).
+  EXPECT_EQ(emu::lavapipeProfile().loopIterationLimit, 65535u);
+  EXPECT_EQ(shadetwin::glintBandRows(0, 1024, 512, 16), 0u);
+  for (uint32_t w : {16u, 64u, 128u, 1024u})
+    for (uint32_t order : {0u, 8u, 16u, 32u, 64u}) {
+      const uint32_t rows = shadetwin::glintBandRows(65535, w, w / 2, order);
+      ASSERT_GE(rows, 1u);
+      ASSERT_LE(rows, w / 2);
+      if (rows > 1) EXPECT_LE(uint64_t(rows) * w * (order + 8) + 6 * (order + 1) + 400, 65535u) << w << " " << order;
+    }
+  EXPECT_EQ(shadetwin::glintBandRows(65535, 64, 32, 16), 32u);  // the scenes' default: one band
+  const uint32_t W = 32, H = 16;
+  std::vector<float> px(size_t(W) * H * 4);
+  for (size_t i = 0; i < px.size(); ++i) px[i] = (i % 4 == 3) ? 1.0f : float(1 + (i * 37) % 11);
+  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, W, H, px.data());
+  shadetwin::GlintLightingSpec one{10, 5, 8, 0, 0}, banded{10, 5, 8, 0, 3};
+  const auto a = shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), one);
+  const auto b = shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), banded);
+  const auto c = shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), banded);
+  size_t same = 0;
+  for (size_t i = 0; i < a.rgba.size(); ++i) {
+    EXPECT_NEAR(a.rgba[i], b.rgba[i], 1e-4f * (1.0f + std::fabs(a.rgba[i])));
+    same += std::memcmp(&a.rgba[i], &b.rgba[i], 4) == 0;
+    ASSERT_EQ(std::memcmp(&b.rgba[i], &c.rgba[i], 4), 0);  // deterministic
+  }
+  EXPECT_LT(same, a.rgba.size());  // the bands reassociate the sums: not the same bits
+  emu::DeviceProfile p = emu::lavapipeProfile();
+  emu::setProfileField(p, "loopIterationLimit", "1000");
+  EXPECT_EQ(p.loopIterationLimit, 1000u);
 }
