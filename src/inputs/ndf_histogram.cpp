@@ -31,24 +31,17 @@ void checkBins(const NdfBinningSpec& b) {
 
 std::string mib(size_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
 
-// The texel ranges [lo, hi] of an axis of size n that the unrolled range [a, b] covers, with how
-// many times each is covered (head, whole periods, tail).
-struct Span {
-  int64_t lo, hi;
-  uint32_t mult;
-};
-int axisSpans(int64_t a, int64_t b, int64_t n, Span out[3]) {
-  const int64_t len = b - a + 1, s = ((a % n) + n) % n;
+}  // namespace
+
+int tileSpans(int64_t a, int64_t b, int64_t n, TileSpan out[3]) {
+  const int64_t len = b - a + 1, s = ((a % n) + n) % n, head = std::min(len, n - s);
   int k = 0;
-  const int64_t head = std::min(len, n - s);
   out[k++] = {s, s + head - 1, 1};
-  const int64_t rest = len - head, periods = rest / n, tail = rest % n;
-  if (periods) out[k++] = {0, n - 1, uint32_t(periods)};
-  if (tail) out[k++] = {0, tail - 1, 1};
+  const int64_t rest = len - head;
+  if (rest / n) out[k++] = {0, n - 1, rest / n};
+  if (rest % n) out[k++] = {0, rest % n - 1, 1};
   return k;
 }
-
-}  // namespace
 
 size_t ndfSatFullBytes(uint32_t width, uint32_t height, const NdfBinningSpec& bins) {
   return size_t(width) * height * bins.rings * bins.sectors * sizeof(uint16_t);
@@ -122,11 +115,11 @@ void ndfBoxCounts(const NdfSat& sat, int64_t x0, int64_t y0, int64_t x1, int64_t
   auto S = [&](int64_t x, int64_t y, uint32_t i) -> uint16_t {
     return x < 0 || y < 0 ? 0 : sat.table[(size_t(y) * sat.width + size_t(x)) * row + i];
   };
-  Span xs[3], ys[3];
-  const int nx = axisSpans(x0, x1, sat.width, xs), ny = axisSpans(y0, y1, sat.height, ys);
+  TileSpan xs[3], ys[3];
+  const int nx = tileSpans(x0, x1, sat.width, xs), ny = tileSpans(y0, y1, sat.height, ys);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const Span &a = xs[i], &b = ys[j];
+      const TileSpan &a = xs[i], &b = ys[j];
       const uint16_t m = uint16_t(a.mult * b.mult);
       for (uint32_t k = 0; k < row; ++k) {
         const uint16_t c = uint16_t(S(a.hi, b.hi, k) - S(a.lo - 1, b.hi, k) - S(a.hi, b.lo - 1, k) + S(a.lo - 1, b.lo - 1, k));

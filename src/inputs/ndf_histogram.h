@@ -61,6 +61,14 @@ uint32_t ndfBinOf(const NdfBinningSpec& bins, const float n[3]);
 /// texels; throws std::invalid_argument otherwise (the caller shrinks larger footprints).
 void ndfBoxCounts(const NdfSat& sat, int64_t x0, int64_t y0, int64_t x1, int64_t y1, uint32_t* out);
 
+/// The map ranges an unrolled inclusive range [a, b] of a tiled axis of n texels covers: head
+/// [lo, hi] once, then [0, n - 1] `mult` times (whole periods), then a tail [0, t - 1] once; up to
+/// three, returned count. The SAT's box counts and the G x D baseline split footprints with it.
+struct TileSpan {
+  int64_t lo, hi, mult;
+};
+int tileSpans(int64_t a, int64_t b, int64_t n, TileSpan out[3]);
+
 /// The table as the shaders read it (shade/ndf_histogram.h ndfBoxCounts8): an RGBA32UI 2D array,
 /// layer = stored ring, width x groups by height texels (groups = ceil(P / 8)); texel (x groups + g,
 /// y) packs sectors 8g .. 8g + 7 of map texel (x, y), two per uint (the even sector low). Sectors

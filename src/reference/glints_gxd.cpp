@@ -1,5 +1,7 @@
 #include "reference/glints_gxd.h"
 
+#include "inputs/ndf_histogram.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -12,20 +14,6 @@ using reference::D3;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-struct Span {
-  int64_t lo, hi, mult;
-};
-// The map ranges the unrolled range [a, b] covers on an axis of size n, with multiplicities.
-int spans(int64_t a, int64_t b, int64_t n, Span out[3]) {
-  const int64_t len = b - a + 1, s = ((a % n) + n) % n, head = std::min(len, n - s);
-  int k = 0;
-  out[k++] = {s, s + head - 1, 1};
-  const int64_t rest = len - head;
-  if (rest / n) out[k++] = {0, n - 1, rest / n};
-  if (rest % n) out[k++] = {0, rest % n - 1, 1};
-  return k;
-}
 
 double fresnelConductor(double c, double n, double k) {
   c = std::clamp(c, 0.0, 1.0);
@@ -96,13 +84,13 @@ double glintFootprintNdf(const GlintPixel& px, D3 h, uint64_t* lobes) {
     for (int k = 0; k < 3; ++k) d += std::max(c[k] * lo[3 * b + k], c[k] * hi[3 * b + k]);
     return d;  // no normal of the block has a larger dot with h
   };
-  Span xs[3], ys[3];
-  const int nx = spans(px.x0, px.x1, m.width, xs), ny = spans(px.y0, px.y1, m.height, ys);
+  TileSpan xs[3], ys[3];
+  const int nx = tileSpans(px.x0, px.x1, m.width, xs), ny = tileSpans(px.y0, px.y1, m.height, ys);
   double acc = 0;
   uint64_t count = 0;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const Span &sx = xs[i], &sy = ys[j];
+      const TileSpan &sx = xs[i], &sy = ys[j];
       double part = 0;
       auto texels = [&](int64_t xa, int64_t xb, int64_t ya, int64_t yb) {
         for (int64_t y = ya; y <= yb; ++y)
