@@ -88,15 +88,32 @@ emu::Texture glintEnvDirections(uint32_t w, uint32_t h) {
   return emu::floatTexture(emu::Format::RGBA32F, w, h, t.data());
 }
 
-GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DeviceProfile& dev, const GlintLightingSpec& spec) {
+namespace {
+// What both drivers start from: the empty table, the view directions, the level's quadrature table
+// and the recurrence coefficients.
+struct Prepared {
+  GlintLightingTable t;
+  uint32_t views, ew, eh;
+  std::vector<float> vd;
+  emu::Texture dirs, coef;
+};
+Prepared prepare(const emu::Texture& env, const GlintLightingSpec& spec) {
   check(env, spec);
-  const auto t0 = std::chrono::steady_clock::now();
   GlintLightingTable t;
   t.spec = spec, t.coeffs = (spec.order + 1) * (spec.order + 1);
   const uint32_t views = spec.rings * spec.sectors, ew = env.levelWidth(spec.level), eh = env.levelHeight(spec.level);
   t.rgba.assign(size_t(views) * t.coeffs * 4, 0.0f);
-  const std::vector<float> vd = glintViewDirections(spec);
-  const emu::Texture dirs = glintEnvDirections(ew, eh), coef = shLegendreCoefficients(spec.order);
+  return {std::move(t), views, ew, eh, glintViewDirections(spec), glintEnvDirections(ew, eh), shLegendreCoefficients(spec.order)};
+}
+}  // namespace
+
+GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DeviceProfile& dev, const GlintLightingSpec& spec) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Prepared pr = prepare(env, spec);
+  GlintLightingTable& t = pr.t;
+  const uint32_t views = pr.views, ew = pr.ew, eh = pr.eh;
+  const std::vector<float>& vd = pr.vd;
+  const emu::Texture &dirs = pr.dirs, &coef = pr.coef;
   const shade::Sampler2D es = environmentSampler(env, dev, true), ds = environmentSampler(dirs, dev, false),
                          cs = environmentSampler(coef, dev, false);
   using F = emu::F32<8>;
@@ -123,18 +140,16 @@ GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DevicePr
     });
   }
   t.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return t;
+  return std::move(t);
 }
 
 GlintLightingTable glintLightingVulkan(vk::Context& ctx, const emu::Texture& env, const GlintLightingSpec& spec) {
-  check(env, spec);
   const auto t0 = std::chrono::steady_clock::now();
-  GlintLightingTable t;
-  t.spec = spec, t.coeffs = (spec.order + 1) * (spec.order + 1);
-  const uint32_t views = spec.rings * spec.sectors, ew = env.levelWidth(spec.level), eh = env.levelHeight(spec.level);
-  t.rgba.assign(size_t(views) * t.coeffs * 4, 0.0f);
-  const std::vector<float> vd = glintViewDirections(spec);
-  const emu::Texture dirs = glintEnvDirections(ew, eh), coef = shLegendreCoefficients(spec.order);
+  Prepared pr = prepare(env, spec);
+  GlintLightingTable& t = pr.t;
+  const uint32_t views = pr.views, ew = pr.ew, eh = pr.eh;
+  const std::vector<float>& vd = pr.vd;
+  const emu::Texture &dirs = pr.dirs, &coef = pr.coef;
   vk::Image envImg(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, env.width(), env.height(), 1, env.levels(), 16, VK_IMAGE_VIEW_TYPE_2D);
   vk::Image dirImg(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, dirs.width(), dirs.height(), 1, dirs.levels(), 16, VK_IMAGE_VIEW_TYPE_2D);
   vk::Image coefImg(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, coef.width(), coef.height(), 1, coef.levels(), 16, VK_IMAGE_VIEW_TYPE_2D);
@@ -163,7 +178,7 @@ GlintLightingTable glintLightingVulkan(vk::Context& ctx, const emu::Texture& env
     }
   }
   t.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return t;
+  return std::move(t);
 }
 
 }  // namespace shadetwin
