@@ -39,6 +39,41 @@ std::vector<std::string> splitList(const std::string& s) {
   return r;
 }
 
+}  // namespace
+
+std::vector<uint32_t> parseCounts(const std::string& list, const char* flag, const char* noun, uint32_t lo, uint32_t hi) {
+  std::vector<uint32_t> v;
+  for (const std::string& s : splitList(list)) {
+    char* end = nullptr;
+    const unsigned long x = std::strtoul(s.c_str(), &end, 10);
+    if (*end || x < lo || x > hi)
+      throw std::invalid_argument(std::string(flag) + ": '" + s + "' is not " + noun + " in [" + std::to_string(lo) + ", " +
+                                  std::to_string(hi) + "]");
+    v.push_back(uint32_t(x));
+  }
+  return v;
+}
+
+SweepBuilds sweepBuilds(const SweepOptions& opts, const Scene& scene, std::ostream& log) {
+  SweepBuilds b;
+  b.dev = &emu::lavapipeProfile();
+  if (opts.vulkan) {
+    vk::ContextOptions co;
+    co.device = opts.device;
+    b.ctx = std::make_unique<vk::Context>(co);
+    b.dev = &emu::profileForDevice(b.ctx->deviceName());
+    b.gv = gbufferVulkan(*b.ctx, scene);
+    log << "  Vulkan device " << b.ctx->deviceName() << " (profile " << b.dev->name << ")\n";
+  }
+  b.g = gbufferEmu(scene, *b.dev);
+  b.covered.resize(size_t(b.g.width) * b.g.height);
+  for (size_t p = 0; p < b.covered.size(); ++p) b.covered[p] = b.g.texels[p * kGbufFloats + 3] != 0.0f;
+  log << "  metrics over the " << std::count(b.covered.begin(), b.covered.end(), 1) << " covered pixels\n";
+  return b;
+}
+
+namespace {
+
 // The sampler study of the MIS techniques (issue 5, item 5): env_sampling.csv.
 void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::DeviceProfile& dev, vk::Context* ctx, std::ostream& log) {
   const std::string path = (std::filesystem::path(opts.out) / "env_sampling.csv").string();
@@ -101,25 +136,13 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   if (opts.height) scene.height = opts.height;
   if (opts.blocks) scene.envBlocks = opts.blocks;
   const std::vector<std::string> techniques = splitList(opts.techniques);
-  std::vector<uint32_t> samples;
-  for (const std::string& s : splitList(opts.samples)) {
-    char* end = nullptr;
-    const unsigned long v = std::strtoul(s.c_str(), &end, 10);
-    if (*end || v < 1 || v > 4096) throw std::invalid_argument("--samples: '" + s + "' is not a count in [1, 4096]");
-    samples.push_back(uint32_t(v));
-  }
+  const std::vector<uint32_t> samples = parseCounts(opts.samples, "--samples", "a count", 1, 4096);
   for (const std::string& t : techniques)
     if (!isTechnique(t) || t == "mirror" || t == "glints")
       throw std::invalid_argument("--technique: '" + t +
                                   "' is not a sampling technique (fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis; glints alone runs the glints study)");
   if (techniques.empty() || samples.empty()) throw std::invalid_argument("sweep: no techniques or no sample counts");
-  std::vector<uint32_t> visMaps;
-  for (const std::string& s : splitList(opts.visMaps)) {
-    char* end = nullptr;
-    const unsigned long v = std::strtoul(s.c_str(), &end, 10);
-    if (*end || v > 1024) throw std::invalid_argument("--vis-maps: '" + s + "' is not a map count in [0, 1024]");
-    visMaps.push_back(uint32_t(v));
-  }
+  const std::vector<uint32_t> visMaps = parseCounts(opts.visMaps, "--vis-maps", "a map count", 0, 1024);
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
   EnvironmentMap env = loadEnvironment(scene.environment, quiet);
@@ -147,21 +170,11 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
         << " s, wrote " << path << "\n";
   }
 
-  const emu::DeviceProfile* dev = &emu::lavapipeProfile();
-  std::unique_ptr<vk::Context> ctx;
-  GBuffer gv;
-  if (opts.vulkan) {
-    vk::ContextOptions co;
-    co.device = opts.device;
-    ctx = std::make_unique<vk::Context>(co);
-    dev = &emu::profileForDevice(ctx->deviceName());
-    gv = gbufferVulkan(*ctx, scene);
-    log << "  Vulkan device " << ctx->deviceName() << " (profile " << dev->name << ")\n";
-  }
-  const GBuffer g = gbufferEmu(scene, *dev);
-  std::vector<uint8_t> covered(size_t(g.width) * g.height);  // the techniques differ only where geometry is
-  for (size_t p = 0; p < covered.size(); ++p) covered[p] = g.texels[p * kGbufFloats + 3] != 0.0f;
-  log << "  metrics over the " << std::count(covered.begin(), covered.end(), 1) << " covered pixels\n";
+  SweepBuilds builds = sweepBuilds(opts, scene, log);
+  const emu::DeviceProfile* dev = builds.dev;
+  std::unique_ptr<vk::Context>& ctx = builds.ctx;
+  const GBuffer &gv = builds.gv, &g = builds.g;
+  const std::vector<uint8_t>& covered = builds.covered;
 
   const std::string csvPath = (std::filesystem::path(opts.out) / "sweep.csv").string();
   std::ofstream csv(csvPath);

@@ -12,8 +12,15 @@
 // K the shadow-map, fit, filter and shading times of both builds, the bits, and the error.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <string>
+#include <vector>
+
+#include "emu/device_profile.h"
+#include "passes/gbuffer.h"
+#include "scene/scene.h"
+#include "vk/context.h"
 
 namespace shadetwin {
 
@@ -39,6 +46,20 @@ struct SweepOptions {
   // ... and histogram binnings RINGSxSECTORS@THETAMAX_DEGREES (e.g. 9x32@40,18x32@40) at the scene's degree.
   std::string glintBins;
 };
+
+/// Comma-separated counts in [lo, hi]; throws std::invalid_argument "FLAG: 'S' is not a NOUN in [lo, hi]".
+std::vector<uint32_t> parseCounts(const std::string& list, const char* flag, const char* noun, uint32_t lo, uint32_t hi);
+
+/// The builds a sweep compares: the device profile (lavapipe's, or the Vulkan device's), the Vulkan
+/// context and its G-buffer (with opts.vulkan), the emulator's G-buffer and which pixels have
+/// geometry (the techniques differ only there; the metrics' mask). Logs the device and the count.
+struct SweepBuilds {
+  const emu::DeviceProfile* dev = nullptr;
+  std::unique_ptr<vk::Context> ctx;
+  GBuffer gv, g;
+  std::vector<uint8_t> covered;
+};
+SweepBuilds sweepBuilds(const SweepOptions& opts, const Scene& scene, std::ostream& log);
 
 /// The glints study (sweep --technique glints): glints per degree and G x D per sample count against a
 /// G x D reference; glints.csv, rmse_vs_time.png, the line "glints speed-up at equal error: Sx".

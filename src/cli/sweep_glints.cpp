@@ -29,22 +29,6 @@
 
 namespace shadetwin {
 
-namespace {
-std::vector<uint32_t> counts(const std::string& list, const char* what, uint32_t lo, uint32_t hi) {
-  std::vector<uint32_t> v;
-  std::stringstream ss(list);
-  std::string s;
-  while (std::getline(ss, s, ',')) {
-    char* end = nullptr;
-    const unsigned long x = std::strtoul(s.c_str(), &end, 10);
-    if (s.empty() || *end || x < lo || x > hi)
-      throw std::invalid_argument(std::string(what) + ": '" + s + "' is not in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    v.push_back(uint32_t(x));
-  }
-  return v;
-}
-}  // namespace
-
 int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   Scene scene = loadScene(opts.scene);
   if (opts.width) scene.width = opts.width;
@@ -52,30 +36,20 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   scene.technique = "glints";
   if (!std::all_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.glints; }))
     throw std::invalid_argument("sweep --technique glints: every material of " + opts.scene + " needs a glints block");
-  const std::vector<uint32_t> ladder = counts(opts.samples, "--samples (G x D sample pairs)", 1, 1 << 20);
-  // Up to the shading kernel's capacity (32); beyond 20 lavapipe's lighting table is not the
-  // emulator's (docs/RESULTS.md), which the rows' bit-identical counts show.
-  const std::vector<uint32_t> orders = counts(opts.glintOrders, "--glint-orders", 0, 32);
+  const std::vector<uint32_t> ladder = parseCounts(opts.samples, "--samples", "a G x D sample-pair count", 1, 1 << 20);
+  // Up to the shading kernel's capacity (32); a Vulkan device whose loop limit a degree could exceed
+  // refuses it (ShadePassVk), and the row says so.
+  const std::vector<uint32_t> orders = parseCounts(opts.glintOrders, "--glint-orders", "a degree", 0, 32);
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
   EnvironmentMap env = loadEnvironment(scene.environment, quiet);
   log << "sweep " << opts.scene << " (glints): " << scene.width << "x" << scene.height << ", " << scene.environment << "\n";
-  const emu::DeviceProfile* dev = &emu::lavapipeProfile();
-  std::unique_ptr<vk::Context> ctx;
-  GBuffer gv;
-  if (opts.vulkan) {
-    vk::ContextOptions co;
-    co.device = opts.device;
-    ctx = std::make_unique<vk::Context>(co);
-    dev = &emu::profileForDevice(ctx->deviceName());
-    gv = gbufferVulkan(*ctx, scene);
-    log << "  Vulkan device " << ctx->deviceName() << " (profile " << dev->name << ")\n";
-  }
-  const GBuffer g = gbufferEmu(scene, *dev);
+  SweepBuilds builds = sweepBuilds(opts, scene, log);
+  const emu::DeviceProfile* dev = builds.dev;
+  std::unique_ptr<vk::Context>& ctx = builds.ctx;
+  const GBuffer &gv = builds.gv, &g = builds.g;
+  const std::vector<uint8_t>& covered = builds.covered;
   const size_t n = size_t(g.width) * g.height;
-  std::vector<uint8_t> covered(n);
-  for (size_t p = 0; p < n; ++p) covered[p] = g.texels[p * kGbufFloats + 3] != 0.0f;
-  log << "  metrics over the " << std::count(covered.begin(), covered.end(), 1) << " covered pixels\n";
 
   // G x D: every material's map and its min-max hierarchy; each pixel's frame and footprint as the
   // kernel forms them (the footprint by the shared glintFootprint on the same floats).
@@ -139,7 +113,7 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   const uint32_t sceneOrder = scene.glintOrder;
   double glintMsAtScene = NAN, glintInputsAtScene = NAN, glintErrAtScene = NAN;
   for (uint32_t order : orders) {
-    scene.glintOrder = order;  // may exceed the scene key's cap of 20 (an emulator study)
+    scene.glintOrder = order;
     ShadeInputs in;
     const double msIn = timeMs([&] { in = shadeInputsEmu(scene, *env.texture, *dev); });
     std::vector<float> img;
