@@ -83,18 +83,9 @@ TEST(ShadeGlints, KernelAgreesWithGxdOnABinCentredMapAndConvergesWithTheDegree) 
   for (size_t p = 0; p < size_t(g.width) * g.height; ++p) {
     const float* t = g.texels.data() + p * shadetwin::kGbufFloats;
     if (t[3] == 0.0f) continue;
-    shadetwin::GlintPixel px;
-    px.map = &nm, px.pixel = p, px.fgOutside = true, px.sigma = 0.15;
-    px.n = normalize(D3{t[4], t[5], t[6]});
-    const D3 tg{t[8], t[9], t[10]};
-    px.t = normalize(tg - px.n * dot(px.n, tg));
-    px.b = cross(px.n, px.t) * (t[3] < 0 ? -1.0 : 1.0);
-    px.wo = normalize(D3{cam.eye[0] - t[0], cam.eye[1] - t[1], cam.eye[2] - t[2]});
+    shadetwin::GlintPixel px = shadetwin::glintPixelOf(t, cam.eye, scene.materials[0], nm, nullptr, p);
+    px.fgOutside = true;
     if (dot(px.wo, px.n) < 0.5) continue;  // away from the silhouette (the table has no horizon)
-    const auto box = shadetwin::shade::scalar::glintFootprint(t[7], t[11], shadetwin::shade::V4<float>(t[12], t[13], t[14], t[15]), 32.0f);
-    px.x0 = box.x0, px.y0 = box.y0, px.x1 = box.x1, px.y1 = box.y1;
-    const auto c = scene.materials[0];
-    for (int k = 0; k < 3; ++k) px.eta[k] = c.glintEta[size_t(k)], px.k[k] = c.glintK[size_t(k)];
     const shadetwin::GxdResult r = shadetwin::glintGxd(px, renv, 3000, 7);
     for (int k = 0; k < 3; ++k) truth[3 * p + size_t(k)] = r.rgb[k];
   }

@@ -62,22 +62,7 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   auto pixel = [&](size_t p) {
     const float* t = g.texels.data() + p * kGbufFloats;
     const uint32_t slot = shade::scalar::materialSlot(t[3], uint32_t(scene.materials.size()));
-    const Material& m = scene.materials[slot];
-    GlintPixel px;
-    px.map = &maps[slot], px.bounds = &bounds[slot], px.pixel = p;
-    px.n = reference::normalize({t[4], t[5], t[6]});
-    const reference::D3 tg{t[8], t[9], t[10]};
-    reference::D3 tp = tg - px.n * dot(px.n, tg);
-    if (dot(tp, tp) <= 1e-12) tp = std::fabs(px.n.x) < 0.9 ? reference::D3{0, -px.n.z, px.n.y} : reference::D3{-px.n.z, 0, px.n.x};
-    px.t = reference::normalize(tp);
-    px.b = cross(px.n, px.t) * (t[3] < 0 ? -1.0 : 1.0);
-    px.wo = reference::normalize(reference::D3{cam.eye[0] - t[0], cam.eye[1] - t[1], cam.eye[2] - t[2]});
-    const shade::scalar::GlintBox box = shade::scalar::glintFootprint(t[7], t[11], shade::V4<float>(t[12], t[13], t[14], t[15]),
-                                                                      float(double(maps[slot].width) * m.glintScale));
-    px.x0 = box.x0, px.y0 = box.y0, px.x1 = box.x1, px.y1 = box.y1;
-    px.sigma = m.glintSigma;
-    for (int c = 0; c < 3; ++c) px.eta[c] = m.glintEta[size_t(c)], px.k[c] = m.glintK[size_t(c)];
-    return px;
+    return glintPixelOf(t, cam.eye, scene.materials[slot], maps[slot], &bounds[slot], p);
   };
   auto gxdImage = [&](uint32_t samples, uint64_t seed) {
     std::vector<float> img(4 * n, 0.0f);

@@ -1,6 +1,7 @@
 #include "reference/glints_gxd.h"
 
 #include "inputs/ndf_histogram.h"
+#include "lanes/instantiate.h"
 
 #include <algorithm>
 #include <cmath>
@@ -124,6 +125,25 @@ double glintFootprintNdf(const GlintPixel& px, D3 h, uint64_t* lobes) {
   if (lobes) *lobes += count;
   const double area = double(px.x1 - px.x0 + 1) * double(px.y1 - px.y0 + 1);
   return acc / (area * glintLobeNorm(px.sigma));
+}
+
+GlintPixel glintPixelOf(const float* t, const float eye[3], const Material& m, const NormalMap& map, const NormalBounds* bounds,
+                        uint64_t pixel) {
+  GlintPixel px;
+  px.map = &map, px.bounds = bounds, px.pixel = pixel;
+  px.n = normalize(D3{t[4], t[5], t[6]});
+  const D3 tg{t[8], t[9], t[10]};
+  D3 tp = tg - px.n * dot(px.n, tg);
+  if (dot(tp, tp) <= 1e-12) tp = std::fabs(px.n.x) < 0.9 ? D3{0, -px.n.z, px.n.y} : D3{-px.n.z, 0, px.n.x};
+  px.t = normalize(tp);
+  px.b = cross(px.n, px.t) * (t[3] < 0 ? -1.0 : 1.0);
+  px.wo = normalize(D3{eye[0] - t[0], eye[1] - t[1], eye[2] - t[2]});
+  const shade::scalar::GlintBox box =
+      shade::scalar::glintFootprint(t[7], t[11], shade::V4<float>(t[12], t[13], t[14], t[15]), float(double(map.width) * m.glintScale));
+  px.x0 = box.x0, px.y0 = box.y0, px.x1 = box.x1, px.y1 = box.y1;
+  px.sigma = m.glintSigma;
+  for (int c = 0; c < 3; ++c) px.eta[c] = m.glintEta[size_t(c)], px.k[c] = m.glintK[size_t(c)];
+  return px;
 }
 
 GxdResult glintGxd(const GlintPixel& px, const reference::Environment& env, uint32_t samples, uint64_t seed) {

@@ -24,6 +24,7 @@
 #include "inputs/normal_map.h"
 #include "reference/ref_environment.h"
 #include "reference/reference_brdf.h"
+#include "scene/scene.h"
 
 namespace shadetwin {
 
@@ -56,6 +57,13 @@ struct GxdResult {
   double stdErr[3] = {0, 0, 0};  // of the mean
   uint64_t texelLobes = 0;       // texels visited (their normal tested against h) after the hierarchy's pruning
 };
+
+/// A G-buffer pixel (16 floats, passes/gbuffer.h) as the glints kernel sees it (shade/shade_glints.h):
+/// its frame (n, t by Gram-Schmidt or any perpendicular, b by the handedness), wo towards `eye`, the
+/// footprint by the shared glintFootprint on the same floats (map width x the material's scale), the
+/// material's sigma and conductor. The pixel has geometry (G0.w != 0).
+GlintPixel glintPixelOf(const float* gbufTexel, const float eye[3], const Material& m, const NormalMap& map,
+                        const NormalBounds* bounds, uint64_t pixel);
 
 /// L_o towards wo, `samples` MIS sample pairs.
 GxdResult glintGxd(const GlintPixel& px, const reference::Environment& env, uint32_t samples, uint64_t seed);
