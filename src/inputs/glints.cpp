@@ -129,13 +129,13 @@ void attachLighting(GlintInputs& in, const GlintLightingTable& t) {
   in.lightingBytes = t.bytes(), in.lightingMs = t.buildMs;
 }
 
-}  // namespace
-
 // The lighting table's bands for the device the inputs are built for (its loop limit).
 void bands(GlintInputs& in, const emu::Texture& env, const emu::DeviceProfile& dev) {
   in.lightingSpec.bandRows = glintBandRows(dev.loopIterationLimit, env.levelWidth(in.lightingSpec.level),
                                            env.levelHeight(in.lightingSpec.level), in.lightingSpec.order);
 }
+
+}  // namespace
 
 GlintInputs glintInputsEmu(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
   GlintInputs in = common(scene, env);
