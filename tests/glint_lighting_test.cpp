@@ -133,3 +133,40 @@ TEST(GlintLighting, BandsKeepEveryInvocationBelowTheDevicesLoopLimit) {
   emu::setProfileField(p, "loopIterationLimit", "1000");
   EXPECT_EQ(p.loopIterationLimit, 1000u);
 }
+
+TEST(GlintLighting, LightBandLimitIsTheLastBandWhoseRelativeAmplitudeReachesEpsilon) {
+  // A hand-made degree-6 table of three views: rho_l = sqrt(2l + 1) |Lambda_l| / |Lambda_00| per
+  // channel, the limit the largest l with rho_l >= eps in any channel; a black view has limit 0.
+  shadetwin::GlintLightingTable t;
+  t.spec.order = 6, t.spec.rings = 3, t.spec.sectors = 1, t.coeffs = 49;
+  t.rgba.assign(size_t(3) * 49 * 4, 0.0f);
+  auto set = [&](uint32_t v, uint32_t i, int c, float x) { t.rgba[(size_t(v) * 49 + i) * 4 + size_t(c)] = x; };
+  // View 0: red band 3 at rho 2e-6 (one coefficient, 2e-6 / sqrt(7) of Lambda_00 = 2), band 5 at
+  // rho 0.5e-6: limit 3 at 1e-6, 5 at 1e-7, 0 at 1e-5.
+  set(0, 0, 0, 2.0f);
+  set(0, 9 + 3 + 1, 0, float(2.0 * 2e-6 / std::sqrt(7.0)));
+  set(0, 25 + 5 - 2, 0, float(2.0 * 0.5e-6 / std::sqrt(11.0)));
+  // View 1: red has band 2 at rho 0.22, blue band 6 at rho 3.6e-3 (the channel reaching eps decides).
+  set(1, 0, 0, 1.0f), set(1, 4, 0, 0.1f), set(1, 0, 2, 1.0f), set(1, 36 + 6, 2, 1e-3f);
+  // View 2: black.
+  std::vector<uint32_t> lim = shadetwin::glintLightBandLimits(t, 1e-6);
+  EXPECT_EQ(lim, (std::vector<uint32_t>{3, 6, 0}));
+  EXPECT_EQ(shadetwin::glintLightBandLimits(t, 1e-7)[0], 5u);
+  EXPECT_EQ(shadetwin::glintLightBandLimits(t, 1e-5)[0], 0u);
+  EXPECT_EQ(shadetwin::glintLightBandLimits(t, 0.5)[1], 0u);   // red rho_2 = sqrt(5) 0.1 = 0.22, blue rho_6 = 3.6e-3
+  EXPECT_EQ(shadetwin::glintLightBandLimits(t, 0.05)[1], 2u);
+}
+
+TEST(GlintLighting, HalfVectorLightingOfAConstantSkyIsNotBandLimited) {
+  // Measured (docs/RESULTS.md, Glints): Lambda(wh; wo) = L(wi) 4 (wo.wh) [wo.wh > 0] has a kink where
+  // wh leaves wo's hemisphere, so even a constant environment's half-vector lighting keeps rho_l far
+  // above 1e-6 (about 0.05 at l = 16): M_light is the table's degree at every view, and the adaptive
+  // band limit is decided by the lobes (M_NDF).
+  std::vector<float> px(size_t(64) * 32 * 4, 1.0f);
+  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, 64, 32, px.data());
+  shadetwin::GlintLightingSpec s;
+  s.order = 12, s.rings = 5, s.sectors = 8;
+  const shadetwin::GlintLightingTable t = shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), s);
+  for (uint32_t lim : shadetwin::glintLightBandLimits(t, 1e-6)) EXPECT_EQ(lim, 12u);
+  for (uint32_t lim : shadetwin::glintLightBandLimits(t, 1e-2)) EXPECT_GE(lim, 8u);
+}

@@ -8,6 +8,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -155,4 +156,76 @@ TEST(ShadeGlints, HardCasesStayFiniteAndNonNegative) {
       EXPECT_GT(lit, 0u) << variant << " " << flush;  // the sun is seen in some flakes
     }
   }
+}
+
+namespace {
+// The texture's level 0 as floats (RGBA32F).
+std::vector<float> floatsOf(const emu::Texture& t) {
+  std::vector<float> f(t.levels()[0].size() / 4);
+  std::memcpy(f.data(), t.levels()[0].data(), t.levels()[0].size());
+  return f;
+}
+}  // namespace
+
+TEST(ShadeGlints, AdaptiveBandLimitIsTheSmallerOfTheLobesAndTheLightings) {
+  // M* = min(M_NDF, M_light) per pixel: cutting at degree 5 through the lighting table (every view's
+  // M_light = 5, its alpha) gives the same bits as cutting through the material (M_NDF = 5, k_l = 0
+  // past it), and both differ from the full degree-12 sum; a cut above the degree changes nothing.
+  const uint32_t W = 64, H = 32;
+  std::vector<float> env(size_t(W) * H * 4);
+  for (uint32_t y = 0; y < H; ++y)
+    for (uint32_t x = 0; x < W; ++x) {
+      float* p = &env[4 * (size_t(y) * W + x)];
+      p[0] = 0.3f + 0.02f * float(y), p[1] = 0.4f, p[2] = 0.5f + 0.01f * float(x % 7), p[3] = 1.0f;
+    }
+  env[4 * (size_t(8) * W + 20)] = 5000.0f;
+  const std::string envPath = (dir() / "bands_env.exr").string();
+  shadetwin::writeExr(envPath, W, H, env);
+  std::ostringstream json;
+  json << R"({"image": {"width": 40, "height": 40}, "camera": {"eye": [0, 0.6, 3], "target": [0, 0, 0], "fov": 30},
+    "environment": {"file": ")" << envPath << R"("}, "technique": "glints",
+    "glints": {"order": 12, "view_rings": 9, "view_sectors": 16},
+    "materials": [{"name": "m", "glints": {"map": "flakes", "size": 32, "scale": 2, "sigma": 0.05, "spread": 0.3}}],
+    "objects": [{"mesh": "sphere", "material": "m"}]})";
+  const std::string scenePath = (dir() / "bands.json").string();
+  std::ofstream(scenePath) << json.str();
+  const shadetwin::Scene scene = shadetwin::loadScene(scenePath);
+  const emu::DeviceProfile& dev = emu::lavapipeProfile();
+  std::ostringstream quiet;
+  const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);
+  const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev);
+  const shadetwin::ShadeInputs in = shadetwin::shadeInputsEmu(scene, *e.texture, dev);
+  ASSERT_EQ(in.glints->order, 12u);
+  for (uint32_t lim : in.glints->lightBandLimits) ASSERT_EQ(lim, 12u);  // the sun: not band-limited
+  const std::vector<float> full = shadetwin::shadeEmu(scene, g, in, dev);
+  auto withGlints = [&](const shadetwin::GlintInputs& gi) {
+    shadetwin::ShadeInputs v = in;
+    v.glints = std::make_shared<const shadetwin::GlintInputs>(gi);
+    return shadetwin::shadeEmu(scene, g, v, dev);
+  };
+  auto cutLighting = [&](uint32_t M) {
+    shadetwin::GlintInputs gi = *in.glints;
+    std::vector<float> f = floatsOf(*gi.lighting);
+    const uint32_t coeffs = gi.lighting->width();
+    for (uint32_t v = 0; v < gi.lighting->height(); ++v) f[size_t(v) * coeffs * 4 + 3] = float(M);
+    gi.lighting = std::make_shared<emu::Texture>(emu::floatTexture(emu::Format::RGBA32F, coeffs, gi.lighting->height(), f.data()));
+    return withGlints(gi);
+  };
+  auto cutMaterial = [&](uint32_t M) {
+    shadetwin::GlintInputs gi = *in.glints;
+    std::vector<float> f = floatsOf(*gi.materials);
+    for (uint32_t l = M + 1; l <= gi.order; ++l) f[(6 + l) * 4] = 0.0f;
+    f[6 * 4 + 1] = float(M);
+    gi.materials = std::make_shared<emu::Texture>(emu::floatTexture(emu::Format::RGBA32F, gi.materials->width(), 1, f.data()));
+    return withGlints(gi);
+  };
+  const std::vector<float> a = cutLighting(5), b = cutMaterial(5), c = cutLighting(40);
+  size_t differ = 0, lit = 0;
+  for (size_t i = 0; i < full.size(); ++i) {
+    ASSERT_EQ(std::memcmp(&a[i], &b[i], 4), 0) << i;
+    ASSERT_EQ(std::memcmp(&c[i], &full[i], 4), 0) << i;
+    differ += std::memcmp(&a[i], &full[i], 4) != 0;
+    lit += i % 4 != 3 && full[i] > 0.0f;
+  }
+  EXPECT_GT(differ, lit / 2) << "of " << lit;
 }

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <cmath>
 #include <filesystem>
+#include <algorithm>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -55,6 +56,12 @@ void glintLines(std::ostream& passes, const char* build, const GlintInputs& g) {
   passes << "  glint lighting (" << build << ")    " << std::setw(8) << g.lightingMs << " ms  (" << g.lightingSpec.rings << " x "
          << g.lightingSpec.sectors << " views, degree " << g.lightingSpec.order << ", environment level " << g.lightingSpec.level
          << ", " << g.lightingBytes / (1 << 20) << " MiB)\n";
+  if (!g.lobeBandLimits.empty() && !g.lightBandLimits.empty()) {
+    const auto [n0, n1] = std::minmax_element(g.lobeBandLimits.begin(), g.lobeBandLimits.end());
+    const auto [l0, l1] = std::minmax_element(g.lightBandLimits.begin(), g.lightBandLimits.end());
+    passes << "  glint band limits at 1e-6: M_NDF " << *n0 << ".." << *n1 << " (materials), M_light " << *l0 << ".." << *l1
+           << " (views); M* = min per pixel\n";
+  }
 }
 
 // Output path of frame f: OUT itself for a single frame, else OUT's stem + _NNNN.

@@ -65,6 +65,25 @@ uint32_t glintBandRows(uint32_t loopLimit, uint32_t w, uint32_t h, uint32_t orde
   return uint32_t(std::min<uint64_t>(h, (loopLimit - fixed) / perRow));
 }
 
+std::vector<uint32_t> glintLightBandLimits(const GlintLightingTable& t, double eps) {
+  const uint32_t views = t.spec.rings * t.spec.sectors;
+  std::vector<uint32_t> lim(views, 0);
+  for (uint32_t v = 0; v < views; ++v)
+    for (int c = 0; c < 3; ++c) {
+      const double a0 = std::fabs(double(t.at(v, 0)[c]));
+      if (a0 == 0) continue;
+      for (uint32_t l = t.spec.order; l > lim[v]; --l) {
+        double e = 0;
+        for (uint32_t i = l * l; i < (l + 1) * (l + 1); ++i) e += double(t.at(v, i)[c]) * t.at(v, i)[c];
+        if (std::sqrt((2.0 * l + 1) * e) >= eps * a0) {
+          lim[v] = l;
+          break;
+        }
+      }
+    }
+  return lim;
+}
+
 std::vector<float> glintViewDirections(const GlintLightingSpec& s) {
   std::vector<float> d(size_t(s.rings) * s.sectors * 4, 0.0f);
   for (uint32_t j = 0; j < s.rings; ++j)

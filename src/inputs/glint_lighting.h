@@ -38,6 +38,13 @@ struct GlintLightingTable {
   const float* at(uint32_t view, uint32_t coeff) const { return &rgba[(size_t(view) * coeffs + coeff) * 4]; }
 };
 
+/// The lighting's band limit per view (M_light of the adaptive band limit, docs/DESIGN.md §12): the
+/// largest degree l <= order whose relative band amplitude rho_l = sqrt(2l + 1) |Lambda_l| / |Lambda_00|
+/// reaches eps in some channel (|Lambda_l| the norm of the band's 2l + 1 coefficients). rho_l k_l bounds
+/// band l's share of the pixel against its band 0 for any NDF of lobes with zonal factors k_l (the
+/// addition theorem bounds |D_l| by k_l sqrt((2l + 1) / 4 pi)). A black view: 0.
+std::vector<uint32_t> glintLightBandLimits(const GlintLightingTable& t, double eps);
+
 /// The view directions (xyz, 0), view-major.
 std::vector<float> glintViewDirections(const GlintLightingSpec& spec);
 /// The quadrature table of an equirectangular level of w x h texels: texel centre direction and

@@ -22,7 +22,7 @@ namespace {
 
 uint64_t glintShadeLoopBound(uint32_t order, uint32_t rings, uint32_t sectors) {
   const uint64_t M = order + 1, T = rings, P = sectors, G = (sectors + 7) / 8;
-  return 2 * M * M + M + T + 9 * T * G + T * P * (M + M * (M + 1) / 2);
+  return 2 * M * M + 2 * M + T + 9 * T * G + T * P * (M + M * (M + 1) / 2);
 }
 
 NormalMap glintMaterialMap(const Material& m) {
@@ -98,7 +98,8 @@ GlintInputs common(const Scene& scene, const emu::Texture& env) {
   for (const Material& m : scene.materials) band = std::max(band, gaussianLobeBandLimit(m.glintSigma, 1e-6, scene.glintOrder));
   in.order = std::min(scene.glintOrder, band);
   // Material rows: (eta, sigma), (k, texels per uv), 16 ring layers (-1: none) 4 per texel, then
-  // the lobe's zonal factor k_l (0 beyond the lobe's band limit) for l = 0 .. order.
+  // the lobe's zonal factor k_l (0 beyond the lobe's band limit M_NDF) for l = 0 .. order in .x,
+  // M_NDF itself in texel 6's .y.
   const uint32_t mw = 6 + in.order + 1;
   std::vector<float> mt(size_t(mw) * scene.materials.size() * 4, 0.0f);
   for (size_t i = 0; i < scene.materials.size(); ++i) {
@@ -111,8 +112,10 @@ GlintInputs common(const Scene& scene, const emu::Texture& env) {
       row[8 + r] = r < in.bins.rings && sat.slot[r] >= 0 ? float(base[mapOfMaterial[i]] + uint32_t(sat.slot[r])) : -1.0f;
     const std::vector<double> z = gaussianLobeZh(m.glintSigma, in.order);
     const uint32_t lim = gaussianLobeBandLimit(m.glintSigma, 1e-6, in.order);
+    in.lobeBandLimits.push_back(lim);
     for (uint32_t l = 0; l <= in.order; ++l)
       row[(6 + l) * 4] = l <= lim ? float(z[l] * std::sqrt(4 * std::numbers::pi / (2.0 * l + 1))) : 0.0f;
+    row[6 * 4 + 1] = float(lim);
   }
   in.materials = std::make_shared<emu::Texture>(emu::floatTexture(emu::Format::RGBA32F, mw, uint32_t(scene.materials.size()), mt.data()));
   in.coef = std::make_shared<emu::Texture>(shLegendreCoefficients(std::max(1u, in.order)));
@@ -124,8 +127,13 @@ GlintInputs common(const Scene& scene, const emu::Texture& env) {
   return in;
 }
 
+// The table as the shading pass reads it: each view's lighting band limit M_light at 1e-6 in the
+// alpha of its coefficient 0.
 void attachLighting(GlintInputs& in, const GlintLightingTable& t) {
-  in.lighting = std::make_shared<emu::Texture>(emu::floatTexture(emu::Format::RGBA32F, t.coeffs, t.spec.rings * t.spec.sectors, t.rgba.data()));
+  std::vector<float> rgba = t.rgba;
+  in.lightBandLimits = glintLightBandLimits(t, 1e-6);
+  for (size_t v = 0; v < in.lightBandLimits.size(); ++v) rgba[v * t.coeffs * 4 + 3] = float(in.lightBandLimits[v]);
+  in.lighting = std::make_shared<emu::Texture>(emu::floatTexture(emu::Format::RGBA32F, t.coeffs, t.spec.rings * t.spec.sectors, rgba.data()));
   in.lightingBytes = t.bytes(), in.lightingMs = t.buildMs;
 }
 

@@ -21,18 +21,21 @@ struct GlintInputs {
   std::shared_ptr<const emu::Texture> sat;        // RGBA32UI 2D array: the stored rings of every map
   std::shared_ptr<const emu::Texture> binDirs;    // RGBA32F rings x sectors: each bin's tangent-space direction
   std::shared_ptr<const emu::Texture> materials;  // RGBA32F (6 + order + 1) x materials, layout in glints.cpp
-  std::shared_ptr<const emu::Texture> lighting;   // RGBA32F (order + 1)^2 x views (inputs/glint_lighting.h)
+  std::shared_ptr<const emu::Texture> lighting;   // RGBA32F (order + 1)^2 x views (inputs/glint_lighting.h), A of
+                                                  // coefficient 0: the view's M_light
   std::shared_ptr<const emu::Texture> coef;       // Legendre recurrence coefficients (inputs/sh_legendre.h)
   NdfBinningSpec bins;
   GlintLightingSpec lightingSpec;
   uint32_t mapSize = 0, maps = 0;
   uint32_t order = 0;  // the shading loop's degree: min(table degree, the largest lobe band limit at 1e-6)
+  std::vector<uint32_t> lobeBandLimits;   // M_NDF per material at 1e-6, at most `order`
+  std::vector<uint32_t> lightBandLimits;  // M_light per table view at 1e-6 (glintLightBandLimits)
   size_t satBytes = 0, lightingBytes = 0;
   double satMs = 0, lightingMs = 0;
 };
 
 /// Loop back-edges one invocation of the glints shading kernel may take, at most (every bin of the
-/// footprint non-empty): 2 (M + 1)^2 + (M + 1) + T + 9 T G + T P ((M + 1) + (M + 1)(M + 2) / 2) for
+/// footprint non-empty): 2 (M + 1)^2 + 2 (M + 1) + T + 9 T G + T P ((M + 1) + (M + 1)(M + 2) / 2) for
 /// degree M, T rings, P sectors, G = P / 8 groups (shade/shade_glints.h's loops; the exact-math loops
 /// of fixed count are unrolled). A device with a loop limit (emu::DeviceProfile::loopIterationLimit)
 /// returns partial sums past it.

@@ -4,9 +4,12 @@
 // Y_lm(d_b)), dotted with the half-vector lighting's SH interpolated between the four table views
 // around wo, times F G / (4 cos_o) at the macro normal:
 //   L_o = F(wo.n) G1(wo) G1(r) / (4 cos_o) * max(0, sum_lm Lambda_lm(wo) D_lm),   r = reflect(wo, n).
-// Bins no lane of the vector has are skipped (IF_ANY); loops run to the frame's degree `order`
-// (each lane's k_l is 0 beyond its lobe's band limit). Background pixels: the environment along the
-// camera ray. Dialect only.
+// Adaptive band limit (docs/DESIGN.md §12): each lane sums bands up to M* = min(M_NDF, M_light), M_NDF
+// its material's lobe band limit at 1e-6 (material row texel 6, .y), M_light the largest of the four
+// table views' lighting band limits (lighting texel (0, view), .w; glintLightBandLimits); k_l is 0
+// beyond M*, and bands no lane of the vector needs are skipped (IF_ANY), so a lane's sum is the same
+// whichever lanes share its vector. Loops run to the frame's degree `order`. Bins no lane of the
+// vector has are skipped (IF_ANY). Background pixels: the environment along the camera ray. Dialect only.
 
 const int kGlintShadeMaxOrder = 32;
 const int kGlintShadeCoeffs = (kGlintShadeMaxOrder + 1) * (kGlintShadeMaxOrder + 1);
@@ -44,8 +47,29 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
   PRECISE Float invArea = exDiv(1.0f, area);
   int order = int(s.order);
   int nc = (order + 1) * (order + 1);
+  // Lambda(wo): bilinear between the four table views around wo (theta clamped, phi wrapping).
+  Float2 uv = equirectUv(wo);
+  PRECISE Float fx = uv.x * float(s.viewSectors);
+  PRECISE Float fy = uv.y * float(s.viewRings - 1u);
+  Int x0 = Int(floor(fx));
+  PRECISE Float ax = fx - floor(fx);
+  x0 = select(x0 >= Int(int(s.viewSectors)), x0 - Int(int(s.viewSectors)), x0);
+  Int x1 = select(x0 + Int(1) >= Int(int(s.viewSectors)), Int(0), x0 + Int(1));
+  Int y0 = clamp(Int(floor(fy)), Int(0), Int(int(s.viewRings) - 2));
+  PRECISE Float ay = clamp(fy - Float(y0), 0.0f, 1.0f);
+  Int vs = Int(int(s.viewSectors));
+  Int v00 = y0 * vs + x0;
+  Int v01 = y0 * vs + x1;
+  Int v10 = (y0 + Int(1)) * vs + x0;
+  Int v11 = (y0 + Int(1)) * vs + x1;
+  // M* = min(M_NDF, M_light), the lighting's limit the largest of the four views' (any bilinear
+  // weight may be the whole).
+  Float4 k0 = texelFetch2D(mats, Int(6), row, 0);
+  Float lightMax = max(max(texelFetch2D(lighting, Int(0), v00, 0).w, texelFetch2D(lighting, Int(0), v01, 0).w),
+                       max(texelFetch2D(lighting, Int(0), v10, 0).w, texelFetch2D(lighting, Int(0), v11, 0).w));
+  Int mstar = min(Int(k0.y), Int(lightMax));
   Float kl[kGlintShadeMaxOrder + 1];
-  for (int l = 0; l <= order; ++l) kl[l] = texelFetch2D(mats, Int(6 + l), row, 0).x;
+  for (int l = 0; l <= order; ++l) kl[l] = select(Int(l) <= mstar, texelFetch2D(mats, Int(6 + l), row, 0).x, Float(0.0f));
   Float D[kGlintShadeCoeffs];
   for (int i = 0; i < nc; ++i) D[i] = Float(0.0f);
   int groups = int(s.sectors) / 8;
@@ -75,18 +99,23 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
             ShLeg seed = shLegSeed0();
             ShAzimuth az = ShAzimuth(Float(1.0f), Float(0.0f));
             for (int m = 0; m <= order; ++m) {
-              if (m > 0) {
-                seed = shLegSeedNext(seed, coef, m, pol.sinT);
-                az = shAzimuthNext(az, pol.cosP, pol.sinP);
-              }
-              PRECISE Float wc = select(Mask(m == 0), w, w * 1.41421356f) * az.c;
-              PRECISE Float ws = (w * 1.41421356f) * az.s;
-              ShLeg sl = seed;
-              for (int l = m; l <= order; ++l) {
-                if (l > m) sl = shLegNext(sl, coef, l, m, pol.z);
-                PRECISE Float p = shLegValue(sl) * kl[l];
-                D[l * l + l + m] = D[l * l + l + m] + wc * p;
-                if (m > 0) D[l * l + l - m] = D[l * l + l - m] + ws * p;
+              // Past its M* a lane's k_l are 0: what it adds there is +-0.
+              IF_ANY(Int(m) <= mstar) {
+                if (m > 0) {
+                  seed = shLegSeedNext(seed, coef, m, pol.sinT);
+                  az = shAzimuthNext(az, pol.cosP, pol.sinP);
+                }
+                PRECISE Float wc = select(Mask(m == 0), w, w * 1.41421356f) * az.c;
+                PRECISE Float ws = (w * 1.41421356f) * az.s;
+                ShLeg sl = seed;
+                for (int l = m; l <= order; ++l) {
+                  IF_ANY(Int(l) <= mstar) {
+                    if (l > m) sl = shLegNext(sl, coef, l, m, pol.z);
+                    PRECISE Float p = shLegValue(sl) * kl[l];
+                    D[l * l + l + m] = D[l * l + l + m] + wc * p;
+                    if (m > 0) D[l * l + l - m] = D[l * l + l - m] + ws * p;
+                  }
+                }
               }
             }
           }
@@ -94,31 +123,20 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
       }
     }
   }
-  // Lambda(wo): bilinear between the four table views around wo (theta clamped, phi wrapping).
-  Float2 uv = equirectUv(wo);
-  PRECISE Float fx = uv.x * float(s.viewSectors);
-  PRECISE Float fy = uv.y * float(s.viewRings - 1u);
-  Int x0 = Int(floor(fx));
-  PRECISE Float ax = fx - floor(fx);
-  x0 = select(x0 >= Int(int(s.viewSectors)), x0 - Int(int(s.viewSectors)), x0);
-  Int x1 = select(x0 + Int(1) >= Int(int(s.viewSectors)), Int(0), x0 + Int(1));
-  Int y0 = clamp(Int(floor(fy)), Int(0), Int(int(s.viewRings) - 2));
-  PRECISE Float ay = clamp(fy - Float(y0), 0.0f, 1.0f);
-  Int vs = Int(int(s.viewSectors));
-  Int v00 = y0 * vs + x0;
-  Int v01 = y0 * vs + x1;
-  Int v10 = (y0 + Int(1)) * vs + x0;
-  Int v11 = (y0 + Int(1)) * vs + x1;
   PRECISE Float3 sum = Float3(Float(0.0f), Float(0.0f), Float(0.0f));
-  for (int i = 0; i < nc; ++i) {
-    Float4 a = texelFetch2D(lighting, Int(i), v00, 0);
-    Float4 bq = texelFetch2D(lighting, Int(i), v01, 0);
-    Float4 c = texelFetch2D(lighting, Int(i), v10, 0);
-    Float4 dq = texelFetch2D(lighting, Int(i), v11, 0);
-    PRECISE Float3 top = Float3(a.x, a.y, a.z) * (1.0f - ax) + Float3(bq.x, bq.y, bq.z) * ax;
-    PRECISE Float3 bot = Float3(c.x, c.y, c.z) * (1.0f - ax) + Float3(dq.x, dq.y, dq.z) * ax;
-    PRECISE Float3 L = top * (1.0f - ay) + bot * ay;
-    sum = sum + L * D[i];
+  for (int l = 0; l <= order; ++l) {
+    IF_ANY(Int(l) <= mstar) {  // D is 0 past M*: L * 0 adds +-0
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i) {
+        Float4 a = texelFetch2D(lighting, Int(i), v00, 0);
+        Float4 bq = texelFetch2D(lighting, Int(i), v01, 0);
+        Float4 c = texelFetch2D(lighting, Int(i), v10, 0);
+        Float4 dq = texelFetch2D(lighting, Int(i), v11, 0);
+        PRECISE Float3 top = Float3(a.x, a.y, a.z) * (1.0f - ax) + Float3(bq.x, bq.y, bq.z) * ax;
+        PRECISE Float3 bot = Float3(c.x, c.y, c.z) * (1.0f - ax) + Float3(dq.x, dq.y, dq.z) * ax;
+        PRECISE Float3 L = top * (1.0f - ay) + bot * ay;
+        sum = sum + L * D[i];
+      }
+    }
   }
   PRECISE Float alpha = m0.w * 1.41421356f;
   // r = reflect(wo, n) makes the same angle with n as wo: G1(r) = G1(wo).
