@@ -250,4 +250,32 @@ TEST(Scene, GlintsBlocks) {
   EXPECT_EQ(ok.glintOrder, 8u);
   EXPECT_EQ(ok.glintViewRings, 9u);
   EXPECT_EQ(ok.materials[0].glintMapSize, 64u);
+  EXPECT_EQ(ok.glintGxdSamples, 64u);
+  // The ground-truth technique: the same glints blocks required, its sample pairs a key.
+  p = scene("gl7.json", R"(, "technique": "glints-gxd")", "");
+  EXPECT_NE(errorOf(p).find("technique glints-gxd shades every material"), std::string::npos) << errorOf(p);
+  const shadetwin::Scene gx = shadetwin::loadScene(scene("gl8.json", R"(, "technique": "glints-gxd", "glints": {"gxd_samples": 300})",
+                                                        R"(, "glints": {"map": "flakes"})"));
+  EXPECT_EQ(gx.technique, "glints-gxd");
+  EXPECT_EQ(gx.glintGxdSamples, 300u);
+  p = scene("gl9.json", R"(, "glints": {"gxd_samples": 0})", "");
+  EXPECT_NE(errorOf(p).find("glints.gxd_samples"), std::string::npos) << errorOf(p);
+  // --technique on a command line: unknown names listed, a glints technique on a scene without glints blocks named.
+  shadetwin::Scene plain = shadetwin::loadScene(scene("gl10.json", "", ""));
+  try {
+    shadetwin::setTechnique(plain, "glintz");
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown technique 'glintz'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("glints-gxd"), std::string::npos) << e.what();
+  }
+  try {
+    shadetwin::setTechnique(plain, "glints-gxd");
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("gl10.json: material 'm' has no glints block"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(plain.technique, "fis");  // unchanged
+  shadetwin::setTechnique(plain, "mirror");
+  EXPECT_EQ(plain.technique, "mirror");
 }

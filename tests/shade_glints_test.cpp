@@ -24,6 +24,8 @@
 #include "reference/glints_gxd.h"
 #include "util/image_io.h"
 
+#include <tbb/task_arena.h>
+
 using shadetwin::reference::D3;
 
 namespace {
@@ -228,4 +230,59 @@ TEST(ShadeGlints, AdaptiveBandLimitIsTheSmallerOfTheLobesAndTheLightings) {
     lit += i % 4 != 3 && full[i] > 0.0f;
   }
   EXPECT_GT(differ, lit / 2) << "of " << lit;
+}
+
+TEST(ShadeGlints, GxdTechniqueImageIsEachPixelsGxdOverTheKernelsBackground) {
+  // Technique glints-gxd (glintGxdImage): a covered pixel is glintGxd of its G-buffer texel, a
+  // background pixel the environment along the camera ray (the glints kernel's background, to float
+  // rounding), `only` leaves the others 0, and the bits do not depend on the thread count.
+  const uint32_t W = 64, H = 32;
+  std::vector<float> env(size_t(W) * H * 4);
+  for (size_t i = 0; i < env.size(); ++i) env[i] = i % 4 == 3 ? 1.0f : 0.2f + 0.01f * float((i * 13) % 50);
+  const std::string envPath = (dir() / "gxd_env.exr").string();
+  shadetwin::writeExr(envPath, W, H, env);
+  std::ostringstream json;
+  json << R"({"image": {"width": 32, "height": 24}, "camera": {"eye": [0, 0.6, 3], "target": [0, 0, 0], "fov": 30},
+    "environment": {"file": ")" << envPath << R"(", "intensity": 1.5}, "technique": "glints-gxd",
+    "glints": {"order": 6, "view_rings": 5, "view_sectors": 8, "gxd_samples": 8},
+    "materials": [{"name": "m", "glints": {"map": "scratches", "size": 32, "scale": 2, "sigma": 0.1}}],
+    "objects": [{"mesh": "sphere", "material": "m"}]})";
+  const std::string scenePath = (dir() / "gxd.json").string();
+  std::ofstream(scenePath) << json.str();
+  shadetwin::Scene scene = shadetwin::loadScene(scenePath);
+  const emu::DeviceProfile& dev = emu::lavapipeProfile();
+  std::ostringstream quiet;
+  const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);
+  const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev);
+  const shadetwin::reference::Environment renv(shadetwin::EnvImage{e.width, e.height, e.levels[0].data()}, scene.environmentIntensity);
+  shadetwin::GlintGxdOptions o;
+  o.samples = scene.glintGxdSamples;
+  const std::vector<float> img = shadetwin::glintGxdImage(scene, g.texels.data(), g.width, g.height, renv, o);
+  std::vector<float> one;
+  tbb::task_arena(1).execute([&] { one = shadetwin::glintGxdImage(scene, g.texels.data(), g.width, g.height, renv, o); });
+  ASSERT_EQ(std::memcmp(img.data(), one.data(), img.size() * 4), 0);
+  scene.technique = "glints";
+  const std::vector<float> kernel = shadetwin::shadeEmu(scene, g, shadetwin::shadeInputsEmu(scene, *e.texture, dev), dev);
+  const shadetwin::CameraRays cam = shadetwin::cameraRays(scene);
+  const shadetwin::NormalMap nm = shadetwin::glintMaterialMap(scene.materials[0]);
+  size_t covered = 0, background = 0;
+  std::vector<uint8_t> only(size_t(g.width) * g.height, 0);
+  for (size_t p = 0; p < only.size(); ++p) {
+    const float* t = g.texels.data() + p * shadetwin::kGbufFloats;
+    if (t[3] == 0.0f) {
+      ++background;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(img[4 * p + size_t(c)], kernel[4 * p + size_t(c)], 1e-5f * kernel[4 * p + size_t(c)]) << p;
+      continue;
+    }
+    only[p] = p % 2;
+    ++covered;
+    const shadetwin::GxdResult r = shadetwin::glintGxd(shadetwin::glintPixelOf(t, cam.eye, scene.materials[0], nm, nullptr, p), renv, 8, 1);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(img[4 * p + size_t(c)], float(r.rgb[c])) << p;
+  }
+  EXPECT_GT(covered, 50u);
+  EXPECT_GT(background, 50u);
+  o.only = &only;
+  const std::vector<float> part = shadetwin::glintGxdImage(scene, g.texels.data(), g.width, g.height, renv, o);
+  for (size_t p = 0; p < only.size(); ++p)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(part[4 * p + size_t(c)], only[p] ? img[4 * p + size_t(c)] : 0.0f) << p;
 }

@@ -29,10 +29,10 @@ int benchCommand(const BenchOptions& opts, std::ostream& log) {
   Scene scene = loadScene(opts.scene);
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
-  if (!opts.technique.empty()) scene.technique = opts.technique;
+  if (!opts.technique.empty()) setTechnique(scene, opts.technique);
   if (opts.samples) (usesMisPass(scene.technique) ? scene.misSamples : scene.fisSamples) = opts.samples;
-  if (!isTechnique(scene.technique))
-    throw std::invalid_argument("--technique: unknown technique '" + scene.technique + "' (expected fis, unfiltered, stochastic, env, mirror, kdtree-mis, alias-mis or inversion-mis)");
+  if (scene.technique == "glints-gxd")
+    throw std::invalid_argument("bench: glints-gxd shades on the host (no device pass to time); its times are in sweep --technique glints");
   std::vector<std::string> passes;
   std::stringstream ss(opts.passes);
   for (std::string p; std::getline(ss, p, ',');) {

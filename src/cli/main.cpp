@@ -88,6 +88,9 @@ int main(int argc, char** argv) {
   render->add_option("--object-rotate", ro.objectRotate,
                      "degrees the first object turns about its vertical axis per frame: the G-buffer, shadow maps and "
                      "visibility fit are redone every frame");
+  render->add_option("--technique", ro.technique, "shading technique (default: the scene's; glints-gxd: the glints ground truth on the host)");
+  render->add_option("--samples", ro.samples, "samples of the technique: fis / env samples, MIS or G x D sample pairs (default: the scene's)")
+      ->check(CLI::Range(1, 1 << 20));
   render->add_option("--blocks", ro.blocks, "kd-tree blocks of kdtree-mis / alias-mis (default: the scene's mis.blocks, 6144)")
       ->check(CLI::Range(1, 1 << 20));
   shadetwin::ReferenceCommandOptions refo;

@@ -21,6 +21,8 @@
 #include "passes/passes_vk.h"
 #include "passes/visibility.h"
 #include "inputs/shade_inputs.h"
+#include "reference/glints_gxd.h"
+#include "reference/reference.h"
 #include "vk/context.h"
 #include "scene/scene.h"
 #include "util/timer.h"
@@ -80,6 +82,8 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
   if (opts.blocks) scene.envBlocks = opts.blocks;
+  if (!opts.technique.empty()) setTechnique(scene, opts.technique);
+  if (opts.samples) scene.fisSamples = scene.misSamples = scene.glintGxdSamples = opts.samples;
   const double tScene = msSince(t0);
   if (opts.device != "emu" && opts.device != "vulkan") throw std::invalid_argument("--device " + opts.device + ": expected emu or vulkan");
   if (opts.frames == 0) throw std::invalid_argument("--frames: expected at least 1");
@@ -113,6 +117,14 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   uint32_t accumFrames = 0;
   const Mat4 model0 = scene.objects.empty() ? Mat4{} : scene.objects[0].model;
   const bool moving = opts.objectRotate != 0 && !scene.objects.empty();
+  // glints-gxd: the ground truth, shaded on the host over the G-buffer either build drew.
+  const bool gxd = scene.technique == "glints-gxd";
+  auto gxdImage = [&](const EnvironmentMap& e) {
+    const reference::Environment renv(EnvImage{e.width, e.height, e.levels[0].data()}, scene.environmentIntensity);
+    GlintGxdOptions o;
+    o.samples = scene.glintGxdSamples;
+    return glintGxdImage(scene, g.texels.data(), g.width, g.height, renv, o);
+  };
   for (uint32_t f = 0; f < opts.frames; ++f) {
     scene.misFrame = f;
     if (moving) scene.objects[0].model = rotateAboutOwnAxis(model0, opts.objectRotate * f);
@@ -142,7 +154,8 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       const std::shared_ptr<const VisibilitySetup> vsetup = frameVisibility(in, *env.texture);
       if (vsetup) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *vsetup, dev, &vt));
       t0 = Clock::now();
-      image = shadeEmu(scene, g, in, dev, vis.get());
+      if (gxd) image = gxdImage(env);
+      else image = shadeEmu(scene, g, in, dev, vis.get());
       const double tShade = msSince(t0);
       if (rotated.texture)
         passes << "  environment turned      " << std::setw(8) << tRotate << " ms  (" << degrees << " degrees = "
@@ -168,9 +181,10 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
                << " ms, raster+fragment " << gs.rasterMs << " ms; " << gs.raster.fragments << " fragments, "
                << gs.raster.trianglesClipped << " clipped, " << gs.raster.trianglesCulled << " culled)\n";
       if (vis) visibilityLines(passes, "emu", *vsetup, vt);  // after the G-buffer they read
-      passes << "  shading (emu, " << scene.technique;
+      passes << "  shading (" << (gxd ? "host, double" : "emu") << ", " << scene.technique;
       if (progressive) passes << ", " << scene.misSamples << " sample pairs, frame " << f;
       else if (scene.technique == "glints" && in.glints) passes << ", degree " << in.glints->order;
+      else if (gxd) passes << ", " << scene.glintGxdSamples << " sample pairs";
       else if (scene.technique != "mirror") passes << ", " << scene.fisSamples << " samples";
       passes << ")    " << std::setw(8) << tShade << " ms\n";
     } else {
@@ -178,7 +192,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       if (f == 0) ctx = std::make_unique<vk::Context>();
       if (drawGbuffer) gpass = std::make_unique<GbufferPassVk>(*ctx, scene);  // the scene's object buffer, as moved
       const ShadeInputs& in = cache.vulkan(*ctx, scene, *env.texture);
-      if (cache.lastRebuilt() || rotated.texture) spass = std::make_unique<ShadePassVk>(*ctx, scene, in);
+      if (!gxd && (cache.lastRebuilt() || rotated.texture)) spass = std::make_unique<ShadePassVk>(*ctx, scene, in);
       const double tSetup = msSince(t0);
       if (drawGbuffer) g = gpass->run();
       VisibilityStats vt;
@@ -188,12 +202,17 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
         if (!vpass || moving) vpass = std::make_unique<VisibilityPassVk>(*ctx, scene, vsetup->settings.size);  // built once
         vis = std::make_unique<VisibilityImage>(vpass->run(g, *vsetup, &vt));
       }
-      image = spass->run(g, vis.get());
+      t0 = Clock::now();
+      image = gxd ? gxdImage(env) : spass->run(g, vis.get());
+      const double tShade = gxd ? msSince(t0) : spass->lastMs;
       passes << "  Vulkan set-up (" << ctx->deviceName() << ")  " << std::setw(8) << tSetup << " ms"
              << (cache.lastRebuilt() ? "" : "  (technique inputs reused)") << "\n";
       if (drawGbuffer) passes << "  G-buffer (vulkan)        " << std::setw(8) << gpass->lastMs << " ms  (submit to read-back)\n";
       if (vis) visibilityLines(passes, "vulkan", *vsetup, vt);
-      passes << "  shading (vulkan, " << scene.technique << ") " << std::setw(8) << spass->lastMs << " ms  (submit to read-back)\n";
+      if (gxd)
+        passes << "  shading (host, double, glints-gxd, " << scene.glintGxdSamples << " sample pairs)  " << std::setw(8) << tShade << " ms\n";
+      else
+        passes << "  shading (vulkan, " << scene.technique << ") " << std::setw(8) << tShade << " ms  (submit to read-back)\n";
     }
     // Passes the technique does not use are not run.
     if (!(scene.visMaps && usesFisPass(scene.technique)))

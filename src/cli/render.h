@@ -22,6 +22,8 @@ struct RenderOptions {
   double envRotate = 0;              // degrees the environment turns about +y per frame
   uint32_t blocks = 0;               // kd-tree blocks of the *-mis techniques (0: the scene's mis.blocks)
   double objectRotate = 0;           // degrees the first object turns about its vertical axis per frame
+  std::string technique;             // shading technique (empty: the scene's)
+  uint32_t samples = 0;              // samples of the technique (fis / env samples, MIS or G x D pairs; 0: the scene's)
 };
 
 int renderCommand(const RenderOptions& opts, std::ostream& log);

@@ -49,30 +49,14 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   std::unique_ptr<vk::Context>& ctx = builds.ctx;
   const GBuffer &gv = builds.gv, &g = builds.g;
   const std::vector<uint8_t>& covered = builds.covered;
-  const size_t n = size_t(g.width) * g.height;
 
-  // G x D: every material's map and its min-max hierarchy; each pixel's frame and footprint as the
+  // G x D (technique glints-gxd) over the covered pixels: each pixel's frame and footprint as the
   // kernel forms them (the footprint by the shared glintFootprint on the same floats).
-  std::vector<NormalMap> maps;
-  std::vector<NormalBounds> bounds;
-  for (const Material& m : scene.materials) maps.push_back(glintMaterialMap(m));
-  for (const NormalMap& m : maps) bounds.push_back(normalBounds(m));
   const reference::Environment renv(EnvImage{env.width, env.height, env.levels[0].data()}, scene.environmentIntensity);
-  const CameraRays cam = cameraRays(scene);
-  auto pixel = [&](size_t p) {
-    const float* t = g.texels.data() + p * kGbufFloats;
-    const uint32_t slot = shade::scalar::materialSlot(t[3], uint32_t(scene.materials.size()));
-    return glintPixelOf(t, cam.eye, scene.materials[slot], maps[slot], &bounds[slot], p);
-  };
   auto gxdImage = [&](uint32_t samples, uint64_t seed) {
-    std::vector<float> img(4 * n, 0.0f);
-    tbb::parallel_for(size_t(0), n, [&](size_t p) {
-      img[4 * p + 3] = 1.0f;
-      if (!covered[p]) return;
-      const GxdResult r = glintGxd(pixel(p), renv, samples, seed);
-      for (int c = 0; c < 3; ++c) img[4 * p + size_t(c)] = float(r.rgb[c]);
-    });
-    return img;
+    GlintGxdOptions o;
+    o.samples = samples, o.seed = seed, o.only = &covered;
+    return glintGxdImage(scene, g.texels.data(), g.width, g.height, renv, o);
   };
   const std::string csvPath = (std::filesystem::path(opts.out) / "glints.csv").string();
   std::ofstream csv(csvPath);

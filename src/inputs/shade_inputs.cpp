@@ -25,7 +25,7 @@ ShadeInputs shadeInputsWith(const Scene& scene, const emu::Texture& env, Atlas a
   if (usesMisPass(scene.technique))
     in.envTables = std::make_shared<EnvSamplingTables>(envSamplingTables(env, envMethodOf(scene.technique), scene.envBlocks));
   if (scene.technique == "glints") in.glints = std::make_shared<GlintInputs>(glints());
-  if (scene.technique != "mirror" && scene.technique != "glints")
+  if (scene.technique != "mirror" && !isGlintsTechnique(scene.technique))
     in.maps = std::make_shared<emu::Texture>(maps(loadMaterialMaps(scene)));
   return in;
 }

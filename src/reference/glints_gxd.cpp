@@ -7,6 +7,12 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
+
+#include <tbb/parallel_for.h>
+
+#include "inputs/glints.h"
+#include "passes/shade.h"
 
 namespace shadetwin {
 
@@ -208,6 +214,45 @@ GxdResult glintGxd(const GlintPixel& px, const reference::Environment& env, uint
     r.stdErr[c] = std::sqrt(var / samples);
   }
   return r;
+}
+
+std::vector<float> glintGxdImage(const Scene& scene, const float* gbuffer, uint32_t width, uint32_t height,
+                                 const reference::Environment& env, const GlintGxdOptions& opts) {
+  std::vector<NormalMap> maps;
+  std::vector<NormalBounds> bounds;
+  for (const Material& m : scene.materials) {
+    if (!m.glints) throw std::invalid_argument("glints-gxd: material '" + m.name + "' has no glints block");
+    try {
+      maps.push_back(glintMaterialMap(m));
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("material '" + m.name + "': glints map: " + e.what());
+    }
+  }
+  bounds.reserve(maps.size());
+  for (const NormalMap& m : maps) bounds.push_back(normalBounds(m));
+  // The camera ray through a pixel centre (shade_mirror.h cameraRay's basis, the ray in double).
+  const CameraRays cam = cameraRays(scene);
+  const size_t n = size_t(width) * height;
+  std::vector<float> img(4 * n, 0.0f);
+  tbb::parallel_for(size_t(0), n, [&](size_t p) {
+    img[4 * p + 3] = 1.0f;
+    if (opts.only && !(*opts.only)[p]) return;
+    const float* g = gbuffer + p * 16;
+    double rgb[3];
+    if (g[3] == 0.0f) {
+      const double nx = ((double(p % width) + 0.5) / width) * 2 - 1, ny = ((double(p / width) + 0.5) / height) * 2 - 1;
+      auto axis = [&](int k) { return double(cam.fwd[k]) + double(cam.right[k]) * nx + double(cam.down[k]) * ny; };
+      env.radiance(normalize(reference::D3{axis(0), axis(1), axis(2)}), rgb);
+    } else {
+      const uint32_t slot = shade::scalar::materialSlot(g[3], uint32_t(scene.materials.size()));
+      GlintPixel px = glintPixelOf(g, cam.eye, scene.materials[slot], maps[slot], &bounds[slot], p);
+      px.fgOutside = opts.fgOutside;
+      const GxdResult r = glintGxd(px, env, opts.samples, opts.seed);
+      for (int c = 0; c < 3; ++c) rgb[c] = r.rgb[c];
+    }
+    for (int c = 0; c < 3; ++c) img[4 * p + size_t(c)] = float(rgb[c]);
+  });
+  return img;
 }
 
 }  // namespace shadetwin

@@ -76,6 +76,22 @@ double glintFootprintNdf(const GlintPixel& px, reference::D3 h, uint64_t* lobes 
 /// Beckmann masking, alpha = sqrt(2) sigma); what `fgOutside` multiplies by.
 std::array<double, 3> glintFgOutside(const GlintPixel& px);
 
+/// Technique glints-gxd: the G x D image of a glints scene over a G-buffer (16 floats per pixel,
+/// passes/gbuffer.h; drawn by either build, it holds the footprints' uv derivatives), RGBA, TBB over
+/// pixels. Pixels with geometry: glintGxd of glintPixelOf with `samples` pairs (exact F G, or the
+/// technique's F G outside); pixels without (G0.w == 0): the environment along the camera ray (the
+/// kernel's background); with `only`, pixels it marks 0 are 0 (not shaded). Bits do not depend on the thread count.
+/// Throws std::invalid_argument naming the material whose map cannot be made, or one without a
+/// glints block.
+struct GlintGxdOptions {
+  uint32_t samples = 64;
+  uint64_t seed = 1;
+  bool fgOutside = false;
+  const std::vector<uint8_t>* only = nullptr;  // optional, one per pixel: shade where non-zero
+};
+std::vector<float> glintGxdImage(const Scene& scene, const float* gbuffer, uint32_t width, uint32_t height,
+                                 const reference::Environment& env, const GlintGxdOptions& opts);
+
 /// The Gaussian lobe's normalisation N(sigma) = 2 pi sigma^2 (1 - exp(-2 / sigma^2)).
 double glintLobeNorm(double sigma);
 

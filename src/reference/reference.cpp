@@ -25,6 +25,9 @@
 #include "passes/shade.h"
 #include "inputs/environment.h"
 #include "util/progress.h"
+#include "passes/gbuffer.h"
+#include "reference/glints_gxd.h"
+#include "emu/device_profile.h"
 
 namespace shadetwin {
 namespace {
@@ -169,7 +172,12 @@ struct RefMaps {
 
 std::vector<float> renderReference(const Scene& scene, const EnvImage& envImg, const ReferenceOptions& opts) {
   std::vector<RefBrdf> brdfs;
-  for (const Material& m : scene.materials) brdfs.push_back(refBrdf(m));
+  for (const Material& m : scene.materials) {
+    if (m.glints)
+      throw std::invalid_argument("material '" + m.name + "' is a glints material: its ground truth is G x D over the pixel's footprint "
+                                  "(shadetwin reference on a glints scene, or render --technique glints-gxd)");
+    brdfs.push_back(refBrdf(m));
+  }
   const RefMaps maps(scene);
   const reference::Environment env(envImg, scene.environmentIntensity);
   const World world(scene);
@@ -326,7 +334,20 @@ int referenceCommand(const ReferenceCommandOptions& opts, std::ostream& log) {
   ReferenceOptions ro = opts.render;
   ro.progress = [&](double f) { bar.update(f); };
   auto t0 = std::chrono::steady_clock::now();
-  std::vector<float> image = renderReference(scene, EnvImage{img.width, img.height, img.texels.data()}, ro);
+  std::vector<float> image;
+  if (std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.glints; })) {
+    // A glints scene: G x D (exact F G) over each pixel's footprint, whose uv derivatives come from the
+    // emulated G-buffer (a ray through the pixel centre has none); Embree is not used.
+    setTechnique(scene, "glints-gxd");
+    log << "  glints scene: G x D over the emulated G-buffer's footprints, " << ro.spp << " sample pairs per pixel\n";
+    const GBuffer g = gbufferEmu(scene, emu::lavapipeProfile());
+    GlintGxdOptions go;
+    go.samples = ro.spp, go.seed = ro.seed;
+    image = glintGxdImage(scene, g.texels.data(), g.width, g.height,
+                          reference::Environment(EnvImage{img.width, img.height, img.texels.data()}, scene.environmentIntensity), go);
+  } else {
+    image = renderReference(scene, EnvImage{img.width, img.height, img.texels.data()}, ro);
+  }
   bar.finish();
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::string out = opts.out;

@@ -8,6 +8,7 @@
 #include <map>
 #include <numbers>
 #include <set>
+#include <stdexcept>
 
 namespace shadetwin {
 
@@ -191,6 +192,20 @@ size_t Scene::triangles() const {
 
 std::string defaultScenePath() { return "scenes/bunny.json"; }
 
+void setTechnique(Scene& scene, const std::string& technique) {
+  if (!isTechnique(technique)) {
+    std::string known;
+    for (const char* k : kTechniques) known += (known.empty() ? "" : ", ") + std::string(k);
+    throw std::invalid_argument("--technique: unknown technique '" + technique + "' (expected one of " + known + ")");
+  }
+  if (isGlintsTechnique(technique))
+    for (const Material& m : scene.materials)
+      if (!m.glints)
+        throw std::invalid_argument("--technique " + technique + ": " + scene.path + ": material '" + m.name +
+                                    "' has no glints block (every material of a glints scene is a glinty conductor)");
+  scene.technique = technique;
+}
+
 Scene loadScene(const std::string& path) {
   std::ifstream f(path);
   if (!f) throw SceneError(path + ": cannot open scene file");
@@ -251,8 +266,9 @@ Scene loadScene(const std::string& path) {
   }
   if (j.contains("glints")) {
     const json& f = j["glints"];
-    if (!f.is_object()) R.fail("glints", "expected an object with order, rings, sectors, theta_max, view_rings, view_sectors");
-    R.keys(f, "glints", {"order", "rings", "sectors", "theta_max", "view_rings", "view_sectors"});
+    if (!f.is_object())
+      R.fail("glints", "expected an object with order, rings, sectors, theta_max, view_rings, view_sectors, gxd_samples");
+    R.keys(f, "glints", {"order", "rings", "sectors", "theta_max", "view_rings", "view_sectors", "gxd_samples"});
     s.glintOrder = uint32_t(R.number(f, "glints.order", 16, 0, 32));  // shade_glints.h kGlintShadeMaxOrder
     s.glintRings = uint32_t(R.number(f, "glints.rings", 9, 1, 16));
     s.glintSectors = uint32_t(R.number(f, "glints.sectors", 32, 8, 64));
@@ -260,6 +276,7 @@ Scene loadScene(const std::string& path) {
     s.glintThetaMax = R.number(f, "glints.theta_max", 90, 1, 180) * 3.14159265f / 180.0f;
     s.glintViewRings = uint32_t(R.number(f, "glints.view_rings", 65, 2, 513));
     s.glintViewSectors = uint32_t(R.number(f, "glints.view_sectors", 128, 1, 1024));
+    s.glintGxdSamples = uint32_t(R.number(f, "glints.gxd_samples", 64, 1, 1 << 20));
   }
   if (j.contains("visibility")) {
     const json& f = j["visibility"];
@@ -364,11 +381,11 @@ Scene loadScene(const std::string& path) {
     }
   }
   if (s.materials.empty()) s.materials.push_back(Material{"default"});
-  if (s.technique == "glints")
+  if (isGlintsTechnique(s.technique))
     for (size_t i = 0; i < s.materials.size(); ++i)
       if (!s.materials[i].glints)
         R.fail("materials[" + std::to_string(i) + "].glints",
-               "technique glints shades every material as a glinty conductor: material '" + s.materials[i].name +
+               "technique " + s.technique + " shades every material as a glinty conductor: material '" + s.materials[i].name +
                    "' has no glints block (\"glints\": {\"map\": \"flat\"} is a smooth one)");
 
   if (!j.contains("objects") || !j["objects"].is_array() || j["objects"].empty())

@@ -81,8 +81,11 @@ struct CameraBasis {
 /// "alias-mis" and "inversion-mis" (issue 5) run the MIS pass (shade/shade_env_mis.h) with the
 /// environment sampled by the kd-tree's fitted block distribution, an alias table over the same
 /// blocks, or the inversion method.
-inline constexpr const char* kTechniques[] = {"fis",       "unfiltered", "stochastic",    "env",   "mirror",
-                                             "kdtree-mis", "alias-mis", "inversion-mis", "glints"};
+/// "glints" (issue 17) runs shade/shade_glints.h; "glints-gxd" is its ground truth, G x D over each
+/// pixel's footprint by Monte Carlo (reference/glints_gxd.h), shaded on the host in double whichever
+/// build draws the G-buffer.
+inline constexpr const char* kTechniques[] = {"fis",           "unfiltered", "stochastic", "env",       "mirror", "kdtree-mis",
+                                             "alias-mis",     "inversion-mis", "glints",  "glints-gxd"};
 inline bool isTechnique(const std::string& t) {
   for (const char* k : kTechniques)
     if (t == k) return true;
@@ -90,6 +93,7 @@ inline bool isTechnique(const std::string& t) {
 }
 inline bool usesFisPass(const std::string& t) { return t == "fis" || t == "unfiltered" || t == "stochastic"; }
 inline bool usesMisPass(const std::string& t) { return t == "kdtree-mis" || t == "alias-mis" || t == "inversion-mis"; }
+inline bool isGlintsTechnique(const std::string& t) { return t == "glints" || t == "glints-gxd"; }
 inline constexpr const char* kMisHeuristics[] = {"balance", "power", "env-only", "brdf-only"};  // shade_env_mis.h kMis*
 
 struct Scene {
@@ -128,6 +132,7 @@ struct Scene {
   uint32_t glintRings = 9, glintSectors = 32;
   float glintThetaMax = 1.57079633f;
   uint32_t glintViewRings = 65, glintViewSectors = 128;
+  uint32_t glintGxdSamples = 64;  // technique glints-gxd: MIS sample pairs per pixel
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Object> objects;
@@ -141,6 +146,10 @@ struct Scene {
 };
 
 Scene loadScene(const std::string& path);
+/// A command line's --technique: sets scene.technique, or throws std::invalid_argument for an unknown
+/// technique (listing the known ones) or a glints technique on a scene with a material lacking a glints
+/// block (naming the scene file and the material).
+void setTechnique(Scene& scene, const std::string& technique);
 /// The repository root guess used to resolve `assets/...`: the scene file's directory's parent.
 std::string defaultScenePath();
 
