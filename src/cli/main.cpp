@@ -126,6 +126,12 @@ int main(int argc, char** argv) {
   sweep->add_option("--glint-orders", so.glintOrders, "with --technique glints: comma-separated SH degrees (<= 32)");
   sweep->add_option("--glint-bins", so.glintBins,
                     "with --technique glints: comma-separated histogram binnings RINGSxSECTORS@THETAMAX (degrees), e.g. 9x32@40,18x32@40");
+  sweep->add_option("--glint-views", so.glintViews,
+                    "with --technique glints: comma-separated lighting-table view grids RINGSxSECTORS, e.g. 9x16,33x64,65x128");
+  sweep->add_option("--glint-frames", so.glintFrames,
+                    "with --technique glints: temporal stability over N frames of an orbiting camera (0: none)")
+      ->check(CLI::Range(0, 1000));
+  sweep->add_option("--glint-orbit", so.glintOrbit, "with --glint-frames: degrees the camera orbits the target per frame");
   sweep->add_option("--reference", so.reference, "reference EXR (default: render it)");
   sweep->add_option("--reference-spp", so.referenceSpp, "samples per pixel of the rendered reference")->check(CLI::Range(1, 1 << 20));
   sweep->add_option("--out", so.out, "output folder");

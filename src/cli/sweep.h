@@ -45,6 +45,12 @@ struct SweepOptions {
   std::string glintOrders = "4,8,16,20";
   // ... and histogram binnings RINGSxSECTORS@THETAMAX_DEGREES (e.g. 9x32@40,18x32@40) at the scene's degree.
   std::string glintBins;
+  // ... and lighting-table view grids RINGSxSECTORS (e.g. 9x16,33x64,65x128) at the scene's degree (Fig. 17).
+  std::string glintViews;
+  // ... and temporal stability: frames of a camera orbiting the target by glintOrbit degrees per frame;
+  // glints, G x D at glints' time (fixed and per-frame seeds) against the reference's frame-to-frame change.
+  uint32_t glintFrames = 0;
+  double glintOrbit = 0.25;
 };
 
 /// Comma-separated counts in [lo, hi]; throws std::invalid_argument "FLAG: 'S' is not a NOUN in [lo, hi]".

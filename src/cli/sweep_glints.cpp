@@ -25,6 +25,7 @@
 #include "util/compare.h"
 #include "util/plot.h"
 #include "util/timer.h"
+#include "reference/ref_environment.h"
 #include "vk/context.h"
 
 namespace shadetwin {
@@ -139,6 +140,86 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
     log << "  glints bins " << std::setw(10) << spec << " (degree " << sceneOrder << ")  emu " << std::setprecision(1) << ms
         << " ms  SATs " << in.glints->satBytes / (1 << 20) << " MiB  RMSE " << std::setprecision(5) << m.rmse << "  PSNR "
         << std::setprecision(2) << m.psnr << " dB\n";
+  }
+  // The lighting table's view grid at the scene's degree (the paper's Fig. 17): build time, memory, error.
+  std::stringstream vl(opts.glintViews);
+  while (std::getline(vl, spec, ',')) {
+    unsigned rings = 0, sectors = 0;
+    if (std::sscanf(spec.c_str(), "%ux%u", &rings, &sectors) != 2 || rings < 2 || rings > 513 || sectors < 1 || sectors > 1024)
+      throw std::invalid_argument("--glint-views: '" + spec + "' is not RINGSxSECTORS (rings 2-513, sectors 1-1024)");
+    Scene sv = scene;
+    sv.glintViewRings = rings, sv.glintViewSectors = sectors;
+    const ShadeInputs in = shadeInputsEmu(sv, *env.texture, *dev);
+    std::vector<float> img;
+    shadeEmu(sv, g, in, *dev, img);  // warm-up
+    const double ms = timeMs([&] { shadeEmu(sv, g, in, *dev, img); });
+    const ImageMetrics m = imageMetrics(img, ref, covered);
+    csv << "glints-views," << spec << "," << std::setprecision(2) << ms << ",," << in.glints->lightingMs << ",," << std::setprecision(6)
+        << m.rmse << "," << m.relMse << "," << std::setprecision(3) << m.psnr << ",," << in.glints->lightingBytes << "\n";
+    log << "  glints views " << std::setw(8) << spec << " (degree " << sceneOrder << ")  emu " << std::setprecision(1) << ms
+        << " ms  table " << in.glints->lightingMs << " ms, " << std::setprecision(2) << double(in.glints->lightingBytes) / (1 << 20)
+        << " MiB  RMSE " << std::setprecision(5) << m.rmse << "  PSNR " << std::setprecision(2) << m.psnr << " dB\n";
+  }
+  // Temporal stability: the camera orbits the target about +y; per frame its G-buffer, the reference,
+  // glints (tables built once: they do not depend on the camera) and G x D at glints' shading time with
+  // a fixed seed and with a new seed per frame. Shimmer = RMS over the pixels covered in both frames of
+  // (I_f - I_f-1) - (R_f - R_f-1): frame-to-frame change the reference does not have.
+  if (opts.glintFrames > 1 && (gxdMs.empty() || std::isnan(glintMsAtScene)))
+    log << "  temporal: not run (it needs the scene's degree " << sceneOrder << " in --glint-orders and a --samples ladder)\n";
+  if (opts.glintFrames > 1 && !gxdMs.empty() && !std::isnan(glintMsAtScene)) {
+    const uint32_t pairs = std::max<uint32_t>(1, uint32_t(std::lround(glintMsAtScene / (gxdMs.back() / ladder.back()))));
+    const ShadeInputs in = shadeInputsEmu(scene, *env.texture, *dev);
+    const Vec3 eye0 = scene.camera.eye, tgt = scene.camera.target;
+    const char* names[4] = {"reference", "glints", "glints-gxd (fixed seed)", "glints-gxd (new seed per frame)"};
+    std::vector<float> prev[4], cur[4];
+    std::vector<uint8_t> prevCov;
+    double shimmer2[4] = {0, 0, 0, 0}, change[4] = {0, 0, 0, 0}, frameErr[4] = {0, 0, 0, 0};
+    size_t count = 0;
+    for (uint32_t f = 0; f < opts.glintFrames; ++f) {
+      Scene sf = scene;
+      const double a = opts.glintOrbit * f * 3.14159265358979323846 / 180.0, dx = eye0[0] - tgt[0], dz = eye0[2] - tgt[2];
+      sf.camera.eye = Vec3{float(tgt[0] + dx * std::cos(a) + dz * std::sin(a)), eye0[1], float(tgt[2] - dx * std::sin(a) + dz * std::cos(a))};
+      const GBuffer gf = gbufferEmu(sf, *dev);
+      std::vector<uint8_t> cov(gf.texels.size() / kGbufFloats);
+      for (size_t p = 0; p < cov.size(); ++p) cov[p] = gf.texels[p * kGbufFloats + 3] != 0.0f;
+      const reference::Environment re(EnvImage{env.width, env.height, env.levels[0].data()}, sf.environmentIntensity);
+      auto gxd = [&](uint32_t samples, uint64_t seed) {
+        GlintGxdOptions o;
+        o.samples = samples, o.seed = seed, o.only = &cov;
+        return glintGxdImage(sf, gf.texels.data(), gf.width, gf.height, re, o);
+      };
+      cur[0] = gxd(opts.referenceSpp, 1000003);
+      shadeEmu(sf, gf, in, *dev, cur[1]);
+      cur[2] = gxd(pairs, 1);
+      cur[3] = gxd(pairs, 1 + f);
+      for (int k = 1; k < 4; ++k) frameErr[k] += imageMetrics(cur[k], cur[0], cov).rmse / opts.glintFrames;
+      if (f > 0)
+        for (size_t p = 0; p < cov.size(); ++p) {
+          if (!cov[p] || !prevCov[p]) continue;
+          for (int c = 0; c < 3; ++c) {
+            const size_t i = 4 * p + size_t(c);
+            const double dr = double(cur[0][i]) - prev[0][i];
+            for (int k = 0; k < 4; ++k) {
+              const double d = double(cur[k][i]) - prev[k][i];
+              shimmer2[k] += (d - dr) * (d - dr), change[k] += std::fabs(d);
+            }
+          }
+          count += 3;
+        }
+      for (int k = 0; k < 4; ++k) std::swap(prev[k], cur[k]);
+      prevCov = cov;
+    }
+    log << "  temporal: " << opts.glintFrames << " frames, camera orbiting " << std::setprecision(2) << opts.glintOrbit
+        << " deg per frame; reference " << opts.referenceSpp << " pairs; G x D at glints' time: " << pairs << " pairs\n";
+    for (int k = 0; k < 4; ++k) {
+      const double shimmer = std::sqrt(shimmer2[k] / std::max<size_t>(1, count)), meanChange = change[k] / std::max<size_t>(1, count);
+      csv << "temporal," << names[k] << ",,,,," << std::setprecision(6) << (k ? frameErr[k] : 0.0) << ",,,," << shimmer << ";"
+          << meanChange << "\n";
+      log << "  temporal " << std::setw(32) << std::left << names[k] << std::right << "  mean |frame change| " << std::setprecision(5)
+          << meanChange << "  shimmer (RMS change - reference's) " << shimmer;
+      if (k) log << "  mean frame RMSE " << frameErr[k];
+      log << "\n";
+    }
   }
   // Speed at equal error: the G x D time for glints' error at the scene's degree, on the ladder's
   // log-log line (error ~ time^-1/2 beyond its ends).
