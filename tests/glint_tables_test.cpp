@@ -84,3 +84,27 @@ TEST(GlintTables, ShDoubleProductConvergesToTheGxdIntegral) {
         EXPECT_NEAR(fg[size_t(c)] * p[size_t(c)] / (4 * cosO), g.rgb[c], 4 * g.stdErr[c] + 0.01 * g.rgb[c]) << c;
   }
 }
+
+TEST(GlintTables, RotatedLobeTableHoldsEachGridDirectionsRealSh) {
+  // Four coefficients per texel, one row per direction of the lighting table's grid (poles included):
+  // every value the double SH at that direction; the unused tail of the last texel is 0.
+  for (uint32_t order : {0u, 3u, 16u}) {
+    const uint32_t rings = 5, sectors = 8, nc = (order + 1) * (order + 1);
+    const emu::Texture t = shadetwin::glintLobeTable(order, rings, sectors);
+    ASSERT_EQ(t.width(), (nc + 3) / 4);
+    ASSERT_EQ(t.height(), rings * sectors);
+    for (uint32_t j = 0; j < rings; ++j)
+      for (uint32_t k = 0; k < sectors; ++k) {
+        const double th = kPi * j / (rings - 1), ph = 2 * kPi * k / sectors;
+        const D3 d{-std::sin(th) * std::sin(ph), std::cos(th), std::sin(th) * std::cos(ph)};  // equirect (u, v) = (k / P, j / (R - 1))
+        const std::vector<double> y = shadetwin::shRealDouble(order, d);
+        for (uint32_t i = 0; i < 4 * t.width(); ++i) {
+          const emu::Texel4 q = t.loadFloat(0, 0, i / 4, j * sectors + k);
+          const float v = i % 4 == 0 ? q.r : i % 4 == 1 ? q.g : i % 4 == 2 ? q.b : q.a;
+          // The table's directions are floats (glintViewDirections): a degree-16 value moves ~16 ulps.
+          if (i < nc) EXPECT_NEAR(v, y[i], 2e-5 * (1 + std::fabs(y[i]))) << order << " " << j << " " << k << " " << i;
+          else EXPECT_EQ(v, 0.0f);
+        }
+      }
+  }
+}

@@ -258,6 +258,10 @@ TEST(Scene, GlintsBlocks) {
                                                         R"(, "glints": {"map": "flakes"})"));
   EXPECT_EQ(gx.technique, "glints-gxd");
   EXPECT_EQ(gx.glintGxdSamples, 300u);
+  EXPECT_EQ(gx.glintLobeRings, 0u);  // default: the recurrences
+  p = scene("gl11.json", R"(, "glints": {"lobe_rings": 65})", "");
+  EXPECT_NE(errorOf(p).find("glints.lobe_rings: the rotated-lobe table needs"), std::string::npos) << errorOf(p);
+  EXPECT_EQ(shadetwin::loadScene(scene("gl12.json", R"(, "glints": {"lobe_rings": 65, "lobe_sectors": 128})", "")).glintLobeSectors, 128u);
   p = scene("gl9.json", R"(, "glints": {"gxd_samples": 0})", "");
   EXPECT_NE(errorOf(p).find("glints.gxd_samples"), std::string::npos) << errorOf(p);
   // --technique on a command line: unknown names listed, a glints technique on a scene without glints blocks named.

@@ -128,6 +128,8 @@ int main(int argc, char** argv) {
                     "with --technique glints: comma-separated histogram binnings RINGSxSECTORS@THETAMAX (degrees), e.g. 9x32@40,18x32@40");
   sweep->add_option("--glint-views", so.glintViews,
                     "with --technique glints: comma-separated lighting-table view grids RINGSxSECTORS, e.g. 9x16,33x64,65x128");
+  sweep->add_option("--glint-lobes", so.glintLobes,
+                    "with --technique glints: comma-separated rotated-lobe table grids RINGSxSECTORS (instead of the recurrences), e.g. 17x32,65x128");
   sweep->add_option("--glint-frames", so.glintFrames,
                     "with --technique glints: temporal stability over N frames of an orbiting camera (0: none)")
       ->check(CLI::Range(0, 1000));

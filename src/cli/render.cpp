@@ -58,6 +58,10 @@ void glintLines(std::ostream& passes, const char* build, const GlintInputs& g) {
   passes << "  glint lighting (" << build << ")    " << std::setw(8) << g.lightingMs << " ms  (" << g.lightingSpec.rings << " x "
          << g.lightingSpec.sectors << " views, degree " << g.lightingSpec.order << ", environment level " << g.lightingSpec.level
          << ", " << g.lightingBytes / (1 << 20) << " MiB)\n";
+  if (g.lobeRings)
+    passes << "  glint lobe table (host)  " << std::setw(8) << g.lobeMs << " ms  (" << g.lobeRings << " x " << g.lobeSectors
+           << " directions, degree " << g.order << ", " << std::setprecision(2) << double(g.lobeBytes) / (1 << 20) << " MiB)\n"
+           << std::setprecision(1);
   if (!g.lobeBandLimits.empty() && !g.lightBandLimits.empty()) {
     const auto [n0, n1] = std::minmax_element(g.lobeBandLimits.begin(), g.lobeBandLimits.end());
     const auto [l0, l1] = std::minmax_element(g.lightBandLimits.begin(), g.lightBandLimits.end());

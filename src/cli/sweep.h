@@ -47,6 +47,8 @@ struct SweepOptions {
   std::string glintBins;
   // ... and lighting-table view grids RINGSxSECTORS (e.g. 9x16,33x64,65x128) at the scene's degree (Fig. 17).
   std::string glintViews;
+  // ... and rotated-lobe tables RINGSxSECTORS instead of the recurrences (Fig. 16), at the scene's degree.
+  std::string glintLobes;
   // ... and temporal stability: frames of a camera orbiting the target by glintOrbit degrees per frame;
   // glints, G x D at glints' time (fixed and per-frame seeds) against the reference's frame-to-frame change.
   uint32_t glintFrames = 0;

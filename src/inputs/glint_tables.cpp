@@ -1,5 +1,7 @@
 #include "inputs/glint_tables.h"
 
+#include "inputs/glint_lighting.h"
+
 #include <cmath>
 #include <numbers>
 
@@ -93,6 +95,19 @@ std::array<double, 3> glintShDoubleProduct(const std::vector<double>& lightingSh
       }
     }
   return out;
+}
+
+emu::Texture glintLobeTable(uint32_t order, uint32_t rings, uint32_t sectors) {
+  GlintLightingSpec spec;
+  spec.order = order, spec.rings = rings, spec.sectors = sectors;
+  const std::vector<float> dirs = glintViewDirections(spec);
+  const uint32_t nc = (order + 1) * (order + 1), w = (nc + 3) / 4, views = rings * sectors;
+  std::vector<float> t(size_t(w) * 4 * views, 0.0f);
+  for (uint32_t v = 0; v < views; ++v) {
+    const std::vector<double> y = shRealDouble(order, reference::D3{dirs[4 * v], dirs[4 * v + 1], dirs[4 * v + 2]});
+    for (uint32_t i = 0; i < nc; ++i) t[size_t(v) * w * 4 + i] = float(y[i]);
+  }
+  return emu::floatTexture(emu::Format::RGBA32F, w, views, t.data());
 }
 
 }  // namespace shadetwin

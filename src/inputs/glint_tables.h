@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "emu/texture.h"
 #include "inputs/ndf_histogram.h"
 #include "reference/reference_brdf.h"
 #include "reference/ref_environment.h"
@@ -24,6 +25,14 @@ std::vector<double> shRealDouble(uint32_t order, reference::D3 d);
 /// zero measure) are skipped.
 std::vector<double> glintLightingShDouble(const reference::Environment& env, reference::D3 wo, uint32_t order,
                                           uint32_t nu = 512, uint32_t nv = 256);
+
+/// The rotated-lobe table (the paper's lobe table, 65 x 128 directions by default): for each direction of
+/// a rings x sectors grid (glintViewDirections' grid: row j at v = j / (rings - 1), poles included, column
+/// k at u = k / sectors) the real SH Y_lm of degree <= order there, from shRealDouble rounded once;
+/// RGBA32F, four coefficients (index 4 q .. 4 q + 3, l^2 + l + m order) per texel, ceil((order + 1)^2 / 4)
+/// texels per row, one row per direction. The kernel interpolates it bilinearly at each bin's world
+/// direction and multiplies by the lobe's k_l (so one table serves every roughness).
+emu::Texture glintLobeTable(uint32_t order, uint32_t rings, uint32_t sectors);
 
 /// The tangent-space direction a bin stands for: its centre (theta, phi) = ((t + 1/2) thetaMax / T,
 /// (p + 1/2) 2 pi / P).

@@ -20,9 +20,10 @@ namespace {
 
 }  // namespace
 
-uint64_t glintShadeLoopBound(uint32_t order, uint32_t rings, uint32_t sectors) {
+uint64_t glintShadeLoopBound(uint32_t order, uint32_t rings, uint32_t sectors, bool lobeTable) {
   const uint64_t M = order + 1, T = rings, P = sectors, G = (sectors + 7) / 8;
-  return 2 * M * M + 2 * M + T + 9 * T * G + T * P * (M + M * (M + 1) / 2);
+  const uint64_t perBin = lobeTable ? (M * M + 3) / 4 + 1 : M + M * (M + 1) / 2;
+  return 2 * M * M + 2 * M + T + 9 * T * G + T * P * perBin;
 }
 
 NormalMap glintMaterialMap(const Material& m) {
@@ -119,6 +120,16 @@ GlintInputs common(const Scene& scene, const emu::Texture& env) {
   }
   in.materials = std::make_shared<emu::Texture>(emu::floatTexture(emu::Format::RGBA32F, mw, uint32_t(scene.materials.size()), mt.data()));
   in.coef = std::make_shared<emu::Texture>(shLegendreCoefficients(std::max(1u, in.order)));
+  in.lobeRings = scene.glintLobeRings, in.lobeSectors = scene.glintLobeSectors;
+  const auto tl = std::chrono::steady_clock::now();
+  if (in.lobeRings) {
+    in.lobes = std::make_shared<emu::Texture>(glintLobeTable(in.order, in.lobeRings, in.lobeSectors));
+    in.lobeBytes = in.lobes->levels()[0].size();
+  } else {
+    const float zero[4] = {0, 0, 0, 0};
+    in.lobes = std::make_shared<emu::Texture>(emu::floatTexture(emu::Format::RGBA32F, 1, 1, zero));
+  }
+  in.lobeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tl).count();
   // The lighting table's spec: the smallest environment level at least 3 (order + 1) texels wide.
   in.lightingSpec.order = in.order, in.lightingSpec.rings = scene.glintViewRings, in.lightingSpec.sectors = scene.glintViewSectors;
   in.lightingSpec.level = 0;

@@ -24,6 +24,10 @@ struct GlintInputs {
   std::shared_ptr<const emu::Texture> lighting;   // RGBA32F (order + 1)^2 x views (inputs/glint_lighting.h), A of
                                                   // coefficient 0: the view's M_light
   std::shared_ptr<const emu::Texture> coef;       // Legendre recurrence coefficients (inputs/sh_legendre.h)
+  std::shared_ptr<const emu::Texture> lobes;      // the rotated-lobe table (glintLobeTable), 1 x 1 when unused
+  uint32_t lobeRings = 0, lobeSectors = 0;        // its grid (0: the kernel runs the recurrences per bin)
+  size_t lobeBytes = 0;
+  double lobeMs = 0;
   NdfBinningSpec bins;
   GlintLightingSpec lightingSpec;
   uint32_t mapSize = 0, maps = 0;
@@ -39,7 +43,10 @@ struct GlintInputs {
 /// degree M, T rings, P sectors, G = P / 8 groups (shade/shade_glints.h's loops; the exact-math loops
 /// of fixed count are unrolled). A device with a loop limit (emu::DeviceProfile::loopIterationLimit)
 /// returns partial sums past it.
-uint64_t glintShadeLoopBound(uint32_t order, uint32_t rings, uint32_t sectors);
+/// With the rotated-lobe table a bin takes ceil((M + 1)^2 / 4) + 1 (its loop over texels of four
+/// coefficients; the inner loop of fixed count 4 is unrolled) instead of the recurrences'
+/// (M + 1) + (M + 1)(M + 2) / 2, so lavapipe runs degree 28 instead of 18 with 9 x 32 bins.
+uint64_t glintShadeLoopBound(uint32_t order, uint32_t rings, uint32_t sectors, bool lobeTable = false);
 
 /// A glint material's normal map (generated from its spec or loaded from its file).
 NormalMap glintMaterialMap(const Material& m);

@@ -64,8 +64,9 @@ uint64_t shadeInputsKey(const Scene& scene, const emu::Texture& env) {
                          m.glintEta[1], m.glintEta[2], m.glintK[0], m.glintK[1], m.glintK[2], 0.0f};
     mix(g, sizeof g);
   }
-  const float gs[6] = {float(scene.glintOrder), float(scene.glintRings), float(scene.glintSectors), scene.glintThetaMax,
-                       float(scene.glintViewRings), float(scene.glintViewSectors)};
+  const float gs[8] = {float(scene.glintOrder),     float(scene.glintRings),       float(scene.glintSectors),
+                       scene.glintThetaMax,           float(scene.glintViewRings),   float(scene.glintViewSectors),
+                       float(scene.glintLobeRings), float(scene.glintLobeSectors)};
   mix(gs, sizeof gs);
   return h;
 }

@@ -49,8 +49,9 @@ struct GlintUniforms {
   uint32_t order, rings, sectors, mapW, mapH;
   float invW, invH;
   uint32_t viewRings, viewSectors;
+  uint32_t lobeRings, lobeSectors;
 };
-static_assert(sizeof(GlintUniforms) == 36, "GlintUniforms must match shade_glints.h GlintSettings (std430, binding 4 of shade_glints.comp)");
+static_assert(sizeof(GlintUniforms) == 44, "GlintUniforms must match shade_glints.h GlintSettings (std430, binding 4 of shade_glints.comp)");
 GlintUniforms glintUniforms(const GlintInputs& in);
 
 /// log2(K w h / N) of the FIS level formula for the scene's settings (w h = S^2 texels per face).

@@ -64,7 +64,7 @@ uint32_t fisMode(const Scene& scene) {
 GlintUniforms glintUniforms(const GlintInputs& in) {
   return {in.order, in.bins.rings, in.bins.sectors, in.sat->width() / ndfSatGroups(in.bins), in.sat->height(),
           1.0f / float(in.sat->width() / ndfSatGroups(in.bins)), 1.0f / float(in.sat->height()), in.lightingSpec.rings,
-          in.lightingSpec.sectors};
+          in.lightingSpec.sectors, in.lobeRings, in.lobeSectors};
 }
 
 float fisLevelConstant(const Scene& scene) {
@@ -246,14 +246,16 @@ void shadeGlintsEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in,
   const shade::Sampler2D env = environmentSampler(*in.environment, dev, true);
   const shade::USampler2DArray sat{gi.sat.get()};
   const shade::Sampler2D bins = environmentSampler(*gi.binDirs, dev, false), mats = environmentSampler(*gi.materials, dev, false),
-                         lighting = environmentSampler(*gi.lighting, dev, false), coef = environmentSampler(*gi.coef, dev, false);
+                         lighting = environmentSampler(*gi.lighting, dev, false), coef = environmentSampler(*gi.coef, dev, false),
+                         lobes = environmentSampler(*gi.lobes, dev, false);
   const GlintUniforms u = glintUniforms(gi);
-  const shade::x8::GlintSettings s{u.order, u.rings, u.sectors, u.mapW, u.mapH, u.invW, u.invH, u.viewRings, u.viewSectors};
+  const shade::x8::GlintSettings s{u.order, u.rings,     u.sectors,     u.mapW,      u.mapH,
+                                   u.invW,  u.invH,      u.viewRings,   u.viewSectors, u.lobeRings, u.lobeSectors};
   const F8 intensity(scene.environmentIntensity);
   shadePixelBlocks(scene, g, dev, 2, uint32_t(scene.materials.size()), out, [&](const PixelBlock& p) {
     emu::I32<8> row;
     for (int l = 0; l < 8; ++l) row.set(l, int32_t(p.slot[l]));
-    return shade::x8::shadeGlints(sat, bins, mats, lighting, coef, env, s, intensity, p.g0, p.g1, p.g2, p.g3, p.eye, p.ray, row);
+    return shade::x8::shadeGlints(sat, bins, mats, lighting, coef, lobes, env, s, intensity, p.g0, p.g1, p.g2, p.g3, p.eye, p.ray, row);
   });
 }
 }  // namespace

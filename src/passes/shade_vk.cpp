@@ -36,7 +36,7 @@ static_assert(sizeof(ShadePush) == 112, "ShadePush must match the push block of 
 // whole 128-byte material records and G0..G3 (64 bytes per pixel), mirror G0, G1. The MIS kernel:
 // 96 bytes, binding 4 = MisSettingsGpu, 5 = material maps, 6 and 7 = the sampler's tables. glints:
 // 96 bytes, G0..G3, binding 4 = GlintUniforms, 5 = the SATs (RGBA32UI array), 6 bin directions,
-// 7 material rows, 8 the lighting table, 9 the Legendre coefficients (inputs/glints.h).
+// 7 material rows, 8 the lighting table, 9 the Legendre coefficients, 10 the rotated-lobe table (inputs/glints.h).
 struct KernelInfo {
   std::span<const uint32_t> spirv;
   uint32_t bindings;
@@ -47,7 +47,7 @@ KernelInfo kernelInfo(const std::string& technique) {
   if (usesFisPass(technique)) return {kSpv_shade_fis_comp, 6, sizeof(ShadePush), true, false};
   if (technique == "env") return {kSpv_shade_env_comp, 6, offsetof(ShadePush, levelConstant), true, true};
   if (usesMisPass(technique)) return {kSpv_shade_env_mis_comp, 8, offsetof(ShadePush, levelConstant), true, true};
-  if (technique == "glints") return {kSpv_shade_glints_comp, 10, offsetof(ShadePush, levelConstant), false, true};
+  if (technique == "glints") return {kSpv_shade_glints_comp, 11, offsetof(ShadePush, levelConstant), false, true};
   return {kSpv_shade_mirror_comp, 4, offsetof(ShadePush, levelConstant), false, true};
 }
 
@@ -85,14 +85,15 @@ struct ShadePassVk::Impl {
   vk::Sampler mapSampler;
   std::unique_ptr<vk::Image> table, texels;  // *-mis: the environment sampler's tables (bindings 6, 7)
   vk::Sampler tableSampler;
-  std::unique_ptr<vk::Image> glintSat, glintBins, glintMats, glintLighting, glintCoef;  // glints: bindings 5-9
+  std::unique_ptr<vk::Image> glintSat, glintBins, glintMats, glintLighting, glintCoef, glintLobes;  // glints: bindings 5-10
   std::shared_ptr<const GlintInputs> glints;
   std::unique_ptr<vk::Buffer> gbuf, out;
-  static constexpr VkDescriptorType kLayout[10] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+  static constexpr VkDescriptorType kLayout[11] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                                    VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                                                    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+                                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                   VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
   const EnvSamplingTables* envTables;
   KernelInfo info;
   bool fis;
@@ -136,10 +137,11 @@ struct ShadePassVk::Impl {
       // The device's loop limit bounds the kernel: refuse a degree and binning that could exceed it
       // (lavapipe: a pixel past it gets partial sums; measured in docs/RESULTS.md).
       const emu::DeviceProfile& prof = emu::profileForDevice(c.deviceName());
-      const uint64_t bound = glintShadeLoopBound(in.glints->order, in.glints->bins.rings, in.glints->bins.sectors);
+      const bool lobe = in.glints->lobeRings != 0;
+      const uint64_t bound = glintShadeLoopBound(in.glints->order, in.glints->bins.rings, in.glints->bins.sectors, lobe);
       if (prof.loopIterationLimit && bound > prof.loopIterationLimit) {
         uint32_t ok = in.glints->order;
-        while (ok > 0 && glintShadeLoopBound(ok, in.glints->bins.rings, in.glints->bins.sectors) > prof.loopIterationLimit) --ok;
+        while (ok > 0 && glintShadeLoopBound(ok, in.glints->bins.rings, in.glints->bins.sectors, lobe) > prof.loopIterationLimit) --ok;
         throw vk::Error("glints on " + c.deviceName() + ": degree " + std::to_string(in.glints->order) + " with " +
                         std::to_string(in.glints->bins.rings) + " x " + std::to_string(in.glints->bins.sectors) +
                         " bins may take " + std::to_string(bound) + " loop iterations per pixel, the device stops loops after " +
@@ -153,6 +155,7 @@ struct ShadePassVk::Impl {
       glintMats = dataTextureImage(c, *in.glints->materials);
       glintLighting = dataTextureImage(c, *in.glints->lighting);
       glintCoef = dataTextureImage(c, *in.glints->coef);
+      glintLobes = dataTextureImage(c, *in.glints->lobes);
     }
   }
 };
@@ -172,7 +175,7 @@ std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis
   float* dst = m.gbuf->as<float>();
   for (size_t p = 0; p < n; ++p) std::memcpy(dst + stride / 4 * p, g.texels.data() + p * kGbufFloats, stride);
   const CameraRays cam = cameraRays(m.scene);
-  vk::Binding b[10] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
+  vk::Binding b[11] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.env.view(), m.sampler.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.gbuf->handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.materials.handle()},
                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m.out->handle()},
@@ -182,12 +185,13 @@ std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis
                              m.tableSampler.handle()},
                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.texels ? m.texels->view() : VK_NULL_HANDLE,
                              m.tableSampler.handle()},
-                            {}, {}};
-  if (m.glints) {  // glints: the uniforms in binding 4, the tables in 5-9
+                            {}, {}, {}};
+  if (m.glints) {  // glints: the uniforms in binding 4, the tables in 5-10
     const GlintUniforms u = glintUniforms(*m.glints);
     std::memcpy(m.extra.data(), &u, sizeof u);
-    const vk::Image* img[5] = {m.glintSat.get(), m.glintBins.get(), m.glintMats.get(), m.glintLighting.get(), m.glintCoef.get()};
-    for (int k = 0; k < 5; ++k) b[5 + k] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, img[k]->view(), m.tableSampler.handle()};
+    const vk::Image* img[6] = {m.glintSat.get(), m.glintBins.get(), m.glintMats.get(), m.glintLighting.get(), m.glintCoef.get(),
+                               m.glintLobes.get()};
+    for (int k = 0; k < 6; ++k) b[5 + k] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, img[k]->view(), m.tableSampler.handle()};
   }
   // fis with visibility: binding 4 is the E/pi coefficients, the lighting SH and the pixels' fit.
   std::unique_ptr<vk::Buffer> visExtra;

@@ -267,8 +267,8 @@ Scene loadScene(const std::string& path) {
   if (j.contains("glints")) {
     const json& f = j["glints"];
     if (!f.is_object())
-      R.fail("glints", "expected an object with order, rings, sectors, theta_max, view_rings, view_sectors, gxd_samples");
-    R.keys(f, "glints", {"order", "rings", "sectors", "theta_max", "view_rings", "view_sectors", "gxd_samples"});
+      R.fail("glints", "expected an object with order, rings, sectors, theta_max, view_rings, view_sectors, lobe_rings, lobe_sectors, gxd_samples");
+    R.keys(f, "glints", {"order", "rings", "sectors", "theta_max", "view_rings", "view_sectors", "lobe_rings", "lobe_sectors", "gxd_samples"});
     s.glintOrder = uint32_t(R.number(f, "glints.order", 16, 0, 32));  // shade_glints.h kGlintShadeMaxOrder
     s.glintRings = uint32_t(R.number(f, "glints.rings", 9, 1, 16));
     s.glintSectors = uint32_t(R.number(f, "glints.sectors", 32, 8, 64));
@@ -277,6 +277,10 @@ Scene loadScene(const std::string& path) {
     s.glintViewRings = uint32_t(R.number(f, "glints.view_rings", 65, 2, 513));
     s.glintViewSectors = uint32_t(R.number(f, "glints.view_sectors", 128, 1, 1024));
     s.glintGxdSamples = uint32_t(R.number(f, "glints.gxd_samples", 64, 1, 1 << 20));
+    s.glintLobeRings = uint32_t(R.number(f, "glints.lobe_rings", 0, 0, 513));
+    s.glintLobeSectors = uint32_t(R.number(f, "glints.lobe_sectors", 0, 0, 1024));
+    if ((s.glintLobeRings == 0) != (s.glintLobeSectors == 0) || s.glintLobeRings == 1)
+      R.fail("glints.lobe_rings", "the rotated-lobe table needs lobe_rings >= 2 and lobe_sectors >= 1 (both 0: recurrences per bin)");
   }
   if (j.contains("visibility")) {
     const json& f = j["visibility"];

@@ -133,6 +133,7 @@ struct Scene {
   float glintThetaMax = 1.57079633f;
   uint32_t glintViewRings = 65, glintViewSectors = 128;
   uint32_t glintGxdSamples = 64;  // technique glints-gxd: MIS sample pairs per pixel
+  uint32_t glintLobeRings = 0, glintLobeSectors = 0;  // the rotated-lobe table's grid (0: recurrences per bin)
   std::vector<Mesh> meshes;
   std::vector<Material> materials;
   std::vector<Object> objects;

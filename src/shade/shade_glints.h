@@ -24,9 +24,48 @@ struct GlintSettings {
   float invH;
   uint viewRings;    // lighting table views
   uint viewSectors;
+  uint lobeRings;    // rotated-lobe table directions (0: the recurrences at each bin's direction)
+  uint lobeSectors;
 };
 
-Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampler2D lighting, Sampler2D coef, Sampler2D env,
+// The four grid points around direction d of a (rings x sectors) equirectangular grid whose row j is
+// v = j / (rings - 1) (poles included) and column k is u = k / sectors (the lighting table's views and
+// the lobe table's directions), and the bilinear weights (theta clamped, phi wrapping).
+struct GlintGridTap {
+  Int v00;
+  Int v01;
+  Int v10;
+  Int v11;
+  Float ax;
+  Float ay;
+};
+GlintGridTap glintGridTap(Float3 d, uint rings, uint sectors) {
+  Float2 uv = equirectUv(d);
+  PRECISE Float fx = uv.x * float(sectors);
+  PRECISE Float fy = uv.y * float(rings - 1u);
+  Int x0 = Int(floor(fx));
+  PRECISE Float ax = fx - floor(fx);
+  x0 = select(x0 >= Int(int(sectors)), x0 - Int(int(sectors)), x0);
+  Int x1 = select(x0 + Int(1) >= Int(int(sectors)), Int(0), x0 + Int(1));
+  Int y0 = clamp(Int(floor(fy)), Int(0), Int(int(rings) - 2));
+  PRECISE Float ay = clamp(fy - Float(y0), 0.0f, 1.0f);
+  Int vs = Int(int(sectors));
+  return GlintGridTap(y0 * vs + x0, y0 * vs + x1, (y0 + Int(1)) * vs + x0, (y0 + Int(1)) * vs + x1, ax, ay);
+}
+
+// Bilinear at a tap of a table whose row v holds a direction's values (texel x of row v).
+Float4 glintGridLerp(Sampler2D t, int x, GlintGridTap k) {
+  Float4 a = texelFetch2D(t, Int(x), k.v00, 0);
+  Float4 b = texelFetch2D(t, Int(x), k.v01, 0);
+  Float4 c = texelFetch2D(t, Int(x), k.v10, 0);
+  Float4 d = texelFetch2D(t, Int(x), k.v11, 0);
+  PRECISE Float4 top = a * (1.0f - k.ax) + b * k.ax;
+  PRECISE Float4 bot = c * (1.0f - k.ax) + d * k.ax;
+  PRECISE Float4 r = top * (1.0f - k.ay) + bot * k.ay;
+  return r;
+}
+
+Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampler2D lighting, Sampler2D coef, Sampler2D lobes, Sampler2D env,
                    GlintSettings s, Float intensity, Float4 g0, Float4 g1, Float4 g2, Float4 g3, Float3 eye, Float3 ray, Int row) {
   Mask geometry = g0.w != 0.0f;
   PRECISE Float3 up = Float3(Float(0.0f), Float(0.0f), Float(1.0f));
@@ -47,26 +86,13 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
   PRECISE Float invArea = exDiv(1.0f, area);
   int order = int(s.order);
   int nc = (order + 1) * (order + 1);
-  // Lambda(wo): bilinear between the four table views around wo (theta clamped, phi wrapping).
-  Float2 uv = equirectUv(wo);
-  PRECISE Float fx = uv.x * float(s.viewSectors);
-  PRECISE Float fy = uv.y * float(s.viewRings - 1u);
-  Int x0 = Int(floor(fx));
-  PRECISE Float ax = fx - floor(fx);
-  x0 = select(x0 >= Int(int(s.viewSectors)), x0 - Int(int(s.viewSectors)), x0);
-  Int x1 = select(x0 + Int(1) >= Int(int(s.viewSectors)), Int(0), x0 + Int(1));
-  Int y0 = clamp(Int(floor(fy)), Int(0), Int(int(s.viewRings) - 2));
-  PRECISE Float ay = clamp(fy - Float(y0), 0.0f, 1.0f);
-  Int vs = Int(int(s.viewSectors));
-  Int v00 = y0 * vs + x0;
-  Int v01 = y0 * vs + x1;
-  Int v10 = (y0 + Int(1)) * vs + x0;
-  Int v11 = (y0 + Int(1)) * vs + x1;
+  // Lambda(wo): bilinear between the four table views around wo.
+  GlintGridTap view = glintGridTap(wo, s.viewRings, s.viewSectors);
   // M* = min(M_NDF, M_light), the lighting's limit the largest of the four views' (any bilinear
   // weight may be the whole).
   Float4 k0 = texelFetch2D(mats, Int(6), row, 0);
-  Float lightMax = max(max(texelFetch2D(lighting, Int(0), v00, 0).w, texelFetch2D(lighting, Int(0), v01, 0).w),
-                       max(texelFetch2D(lighting, Int(0), v10, 0).w, texelFetch2D(lighting, Int(0), v11, 0).w));
+  Float lightMax = max(max(texelFetch2D(lighting, Int(0), view.v00, 0).w, texelFetch2D(lighting, Int(0), view.v01, 0).w),
+                       max(texelFetch2D(lighting, Int(0), view.v10, 0).w, texelFetch2D(lighting, Int(0), view.v11, 0).w));
   Int mstar = min(Int(k0.y), Int(lightMax));
   Float kl[kGlintShadeMaxOrder + 1];
   for (int l = 0; l <= order; ++l) kl[l] = select(Int(l) <= mstar, texelFetch2D(mats, Int(6 + l), row, 0).x, Float(0.0f));
@@ -95,6 +121,32 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
             PRECISE Float w = select(on, Float(cnt) * invArea, Float(0.0f));
             Float4 dt = texelFetchUniform(binDirs, 8 * g + j, r, 0);
             PRECISE Float3 d = t * dt.x + b * dt.y + n * dt.z;
+            if (s.lobeRings > 0u) {
+              // The rotated-lobe table: Y_lm at the bin's direction, bilinear between the four grid
+              // directions around it; four coefficients (index 4 q .. 4 q + 3) per texel.
+              GlintGridTap lt = glintGridTap(d, s.lobeRings, s.lobeSectors);
+              int lq = 0;  // the degree of coefficient 4 q
+              for (int q = 0; q < (nc + 3) / 4; ++q) {
+                if ((lq + 1) * (lq + 1) <= 4 * q) ++lq;
+                if ((lq + 1) * (lq + 1) <= 4 * q) ++lq;  // q = 1: from degree 0 to 2
+                IF_ANY(Int(lq) <= mstar) {
+                  Float4 y4 = glintGridLerp(lobes, q, lt);
+                  int l4 = lq;
+                  for (int j = 0; j < 4; ++j) {
+                    int i = 4 * q + j;
+                    if (i < nc) {
+                      if ((l4 + 1) * (l4 + 1) <= i) ++l4;
+                      Float y = y4.x;
+                      if (j == 1) y = y4.y;
+                      if (j == 2) y = y4.z;
+                      if (j == 3) y = y4.w;
+                      D[i] = D[i] + w * (y * kl[l4]);
+                    }
+                  }
+                }
+              }
+            } else {
+            // The recurrences at the bin's direction (exact up to float rounding).
             ShPolar pol = shPolar(d);
             ShLeg seed = shLegSeed0();
             ShAzimuth az = ShAzimuth(Float(1.0f), Float(0.0f));
@@ -118,6 +170,7 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
                 }
               }
             }
+            }
           }
         }
       }
@@ -127,14 +180,8 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
   for (int l = 0; l <= order; ++l) {
     IF_ANY(Int(l) <= mstar) {  // D is 0 past M*: L * 0 adds +-0
       for (int i = l * l; i < (l + 1) * (l + 1); ++i) {
-        Float4 a = texelFetch2D(lighting, Int(i), v00, 0);
-        Float4 bq = texelFetch2D(lighting, Int(i), v01, 0);
-        Float4 c = texelFetch2D(lighting, Int(i), v10, 0);
-        Float4 dq = texelFetch2D(lighting, Int(i), v11, 0);
-        PRECISE Float3 top = Float3(a.x, a.y, a.z) * (1.0f - ax) + Float3(bq.x, bq.y, bq.z) * ax;
-        PRECISE Float3 bot = Float3(c.x, c.y, c.z) * (1.0f - ax) + Float3(dq.x, dq.y, dq.z) * ax;
-        PRECISE Float3 L = top * (1.0f - ay) + bot * ay;
-        sum = sum + L * D[i];
+        Float4 L = glintGridLerp(lighting, i, view);
+        sum = sum + Float3(L.x, L.y, L.z) * D[i];
       }
     }
   }

@@ -15,6 +15,7 @@ layout(set = 0, binding = 6) uniform sampler2D binDirs;
 layout(set = 0, binding = 7) uniform sampler2D mats;
 layout(set = 0, binding = 8) uniform sampler2D lighting;
 layout(set = 0, binding = 9) uniform sampler2D coef;
+layout(set = 0, binding = 10) uniform sampler2D lobes;  // the rotated-lobe table (1 x 1 when unused)
 layout(push_constant) uniform Push {
   vec4 eye, fwd, right, down;
   float invW, invH, maxLod, intensity;
@@ -27,6 +28,6 @@ void main() {
   GbufFis g = gbuf[p];
   vec3 ray = cameraRay(pc.fwd.xyz, pc.right.xyz, pc.down.xyz, float(p % pc.width), float(p / pc.width), pc.invW, pc.invH);
   int row = int(materialSlot(g.g0.w, pc.materialCount));
-  vec4 c = shadeGlints(sat, binDirs, mats, lighting, coef, env, st.gs, pc.intensity, g.g0, g.g1, g.g2, g.g3, pc.eye.xyz, ray, row);
+  vec4 c = shadeGlints(sat, binDirs, mats, lighting, coef, lobes, env, st.gs, pc.intensity, g.g0, g.g1, g.g2, g.g3, pc.eye.xyz, ray, row);
   if (i < pc.count) color[i] = c;
 }
