@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--blocks", so.blocks, "kd-tree blocks of the *-mis techniques (default: the scene's)")->check(CLI::Range(1, 1 << 20));
   sweep->add_option("--maps", so.maps, "with a *-mis technique: environment maps (assets/hdri/NAME.exr) of the sampler study");
   sweep->add_option("--samples", so.samples, "comma-separated sample counts (glints: the G x D baseline's sample pairs)");
-  sweep->add_option("--glint-orders", so.glintOrders, "with --technique glints: comma-separated SH degrees (<= 32)");
+  sweep->add_option("--glint-orders", so.glintOrders, "with --technique glints: comma-separated SH degrees (<= 64)");
   sweep->add_option("--glint-bins", so.glintBins,
                     "with --technique glints: comma-separated histogram binnings RINGSxSECTORS@THETAMAX (degrees), e.g. 9x32@40,18x32@40");
   sweep->add_option("--glint-views", so.glintViews,

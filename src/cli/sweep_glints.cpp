@@ -38,9 +38,9 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   if (!std::all_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.glints; }))
     throw std::invalid_argument("sweep --technique glints: every material of " + opts.scene + " needs a glints block");
   const std::vector<uint32_t> ladder = parseCounts(opts.samples, "--samples", "a G x D sample-pair count", 1, 1 << 20);
-  // Up to the shading kernel's capacity (32); a Vulkan device whose loop limit a degree could exceed
+  // Up to the shading kernel's capacity (64); a Vulkan device whose loop limit a degree could exceed
   // refuses it (ShadePassVk), and the row says so.
-  const std::vector<uint32_t> orders = parseCounts(opts.glintOrders, "--glint-orders", "a degree", 0, 32);
+  const std::vector<uint32_t> orders = parseCounts(opts.glintOrders, "--glint-orders", "a degree", 0, 64);
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
   EnvironmentMap env = loadEnvironment(scene.environment, quiet);

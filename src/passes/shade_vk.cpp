@@ -77,7 +77,7 @@ struct ShadePassVk::Impl {
   vk::Sampler sampler;
   vk::Buffer materials;
   std::vector<MaterialGpu> records;
-  uint32_t kinds[1];  // specialization constant 0: kSceneBrdfKinds
+  uint32_t kinds[3];  // specialization constants 0: kSceneBrdfKinds, 1 and 2: glints' kGlintShadeCoeffs, kGlintShadePaths
   vk::Kernel kernel;
   float envMaxLod;
   vk::Buffer extra;  // binding 4: fis, 9 vec4 of E/pi coefficients; env, the lights
@@ -109,9 +109,11 @@ struct ShadePassVk::Impl {
         env(c, VK_FORMAT_R32G32B32A32_SFLOAT, tex.width(), tex.height(), 1, tex.levels(), 16, VK_IMAGE_VIEW_TYPE_2D),
         sampler(c, environmentSamplerInfo(ki.repeatU)),
         materials(c, std::max<size_t>(1, s.materials.size()) * sizeof(MaterialGpu)),
-        records(materialRecords(s, ki.brdf)), kinds{brdfKindsOf(records)},
+        records(materialRecords(s, ki.brdf)),
+        kinds{brdfKindsOf(records), in.glints ? (in.glints->order + 1) * (in.glints->order + 1) : 1u,
+              in.glints && in.glints->lobeRings ? 2u : 1u},
         kernel(c, vk::Stage::Compute, ki.spirv, std::span<const VkDescriptorType>(kLayout, ki.bindings), uint32_t(ki.pushBytes),
-               {}, std::span<const uint32_t>(kinds, ki.brdf ? 1 : 0)),
+               {}, std::span<const uint32_t>(kinds, ki.brdf ? 1 : in.glints ? 3 : 0)),
         envMaxLod(float(tex.levelCount() - 1)), extra(c, std::max<size_t>(9 * 16, in.lights.data.size() * 4)),
         maps(c, VK_FORMAT_R32G32B32A32_SFLOAT, mapTex.width(), mapTex.height(), mapTex.layers(), mapTex.levels(), 16,
              VK_IMAGE_VIEW_TYPE_2D_ARRAY),

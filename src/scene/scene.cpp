@@ -269,7 +269,7 @@ Scene loadScene(const std::string& path) {
     if (!f.is_object())
       R.fail("glints", "expected an object with order, rings, sectors, theta_max, view_rings, view_sectors, lobe_rings, lobe_sectors, gxd_samples");
     R.keys(f, "glints", {"order", "rings", "sectors", "theta_max", "view_rings", "view_sectors", "lobe_rings", "lobe_sectors", "gxd_samples"});
-    s.glintOrder = uint32_t(R.number(f, "glints.order", 16, 0, 32));  // shade_glints.h kGlintShadeMaxOrder
+    s.glintOrder = uint32_t(R.number(f, "glints.order", 16, 0, 64));  // shade_glints.h kGlintShadeMaxOrder
     s.glintRings = uint32_t(R.number(f, "glints.rings", 9, 1, 16));
     s.glintSectors = uint32_t(R.number(f, "glints.sectors", 32, 8, 64));
     if (s.glintSectors % 8) R.fail("glints.sectors", "expected a multiple of 8 (the table packs 8 sectors per texel)");

@@ -38,6 +38,10 @@
 // compiled at all (a GPU runs both sides of a divergent branch under a mask; lavapipe does for every
 // branch). Default: every kind. The C++ builds skip absent kinds at run time (IF_ANY) instead.
 layout(constant_id = 0) const uint kSceneBrdfKinds = 0xffffffffu;
+// SPEC_INT(name, id, value): an int the host may set per pipeline (GLSL: specialization constant `id`,
+// which may size a local array, so a kernel's scratch fits the frame's setting; C++: the constant, the
+// capacity every setting fits).
+#define SPEC_INT(name, id, value) layout(constant_id = id) const int name = value;
 
 // select(m, a, b): a where m is true, else b. GLSL mix() with a bool selector picks without arithmetic.
 float select(bool m, float a, float b) { return mix(b, a, m); }
@@ -107,6 +111,7 @@ vec3 st_cross(vec3 a, vec3 b) {
 #define INOUT(T) T&
 #define INLINE inline
 #define IF_ANY(m) if (anyLane(m))
+#define SPEC_INT(name, id, value) const int name = value;
 
 using Float2 = ::shadetwin::shade::V2<Float>;
 using Float3 = ::shadetwin::shade::V3<Float>;

@@ -11,8 +11,15 @@
 // whichever lanes share its vector. Loops run to the frame's degree `order`. Bins no lane of the
 // vector has are skipped (IF_ANY). Background pixels: the environment along the camera ray. Dialect only.
 
-const int kGlintShadeMaxOrder = 32;
-const int kGlintShadeCoeffs = (kGlintShadeMaxOrder + 1) * (kGlintShadeMaxOrder + 1);
+const int kGlintShadeMaxOrder = 64;
+// The D_lm array's length: (64 + 1)^2 in C++; on a device the host sets it to the frame's (order + 1)^2
+// (specialization constant 1), since a private array's size is paid per invocation (lavapipe: 1.8x the
+// pass time at degree 16 with 4,225 floats instead of 289).
+SPEC_INT(kGlintShadeCoeffs, 1, 4225)
+// Which ways to the bins' SH a pipeline holds: bit 0 the recurrences, bit 1 the rotated-lobe table. The
+// host sets the one the frame uses (specialization constant 2): lavapipe executes both sides of a branch
+// even when it is uniform, so a pipeline with both paid for both (1.5x at degree 16). C++: both.
+SPEC_INT(kGlintShadePaths, 2, 3)
 
 struct GlintSettings {
   uint order;        // shading degree (<= kGlintShadeMaxOrder)
@@ -121,7 +128,7 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
             PRECISE Float w = select(on, Float(cnt) * invArea, Float(0.0f));
             Float4 dt = texelFetchUniform(binDirs, 8 * g + j, r, 0);
             PRECISE Float3 d = t * dt.x + b * dt.y + n * dt.z;
-            if (s.lobeRings > 0u) {
+            if ((kGlintShadePaths & 2) != 0 && s.lobeRings > 0u) {
               // The rotated-lobe table: Y_lm at the bin's direction, bilinear between the four grid
               // directions around it; four coefficients (index 4 q .. 4 q + 3) per texel.
               GlintGridTap lt = glintGridTap(d, s.lobeRings, s.lobeSectors);
@@ -145,7 +152,8 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
                   }
                 }
               }
-            } else {
+            }
+            if ((kGlintShadePaths & 1) != 0 && s.lobeRings == 0u) {
             // The recurrences at the bin's direction (exact up to float rounding).
             ShPolar pol = shPolar(d);
             ShLeg seed = shLegSeed0();
