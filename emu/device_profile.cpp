@@ -42,6 +42,21 @@ const DeviceProfile& nvidiaProfile() {
   return p;
 }
 
+const DeviceProfile& swiftshaderProfile() {
+  // Issue 18, started: SwiftShader (Google's CPU Vulkan driver, from @sparticuz/chromium 147.0.0) is found and
+  // runs every suite, under lavapipe's choices as a stand-in until its own are measured and modelled
+  // (docs/RESULTS.md, "SwiftShader"). Unverified.
+  static const DeviceProfile p = [] {
+    DeviceProfile q = lavapipeProfile();
+    q.name = "swiftshader", q.verified = false;
+    q.provenance = "stand-in: lavapipe's fields, not yet SwiftShader's (issue 18)";
+    q.raster.verified = false, q.implicitLodVerified = false;
+    q.loopIterationLimit = 0;  // SwiftShader's Reactor JIT has no loop limiter
+    return q;
+  }();
+  return p;
+}
+
 namespace {
 bool parseBool(std::string_view key, std::string_view v) {
   if (v == "true" || v == "1" || v == "on") return true;
@@ -109,7 +124,8 @@ void setProfileField(DeviceProfile& p, std::string_view assignment) {
 const DeviceProfile& profileByName(std::string_view name) {
   if (name == "lavapipe" || name == "llvmpipe") return lavapipeProfile();
   if (name == "nvidia") return nvidiaProfile();
-  throw std::invalid_argument("unknown device profile '" + std::string(name) + "' (known: lavapipe, nvidia)");
+  if (name == "swiftshader") return swiftshaderProfile();
+  throw std::invalid_argument("unknown device profile '" + std::string(name) + "' (known: lavapipe, nvidia, swiftshader)");
 }
 
 const DeviceProfile& profileForDevice(std::string_view deviceName) {
@@ -117,6 +133,7 @@ const DeviceProfile& profileForDevice(std::string_view deviceName) {
   for (auto& c : n) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (n.find("nvidia") != std::string::npos) return nvidiaProfile();
   if (n.find("llvmpipe") != std::string::npos) return lavapipeProfile();
+  if (n.find("swiftshader") != std::string::npos) return swiftshaderProfile();
   throw std::invalid_argument("no device profile for Vulkan device '" + std::string(deviceName) + "'");
 }
 

@@ -76,6 +76,8 @@ struct DeviceProfile {
 
 const DeviceProfile& lavapipeProfile();
 const DeviceProfile& nvidiaProfile();
+/// SwiftShader (issue 18): lavapipe's fields as a stand-in, unverified, no loop limit.
+const DeviceProfile& swiftshaderProfile();
 /// Profile by name ("lavapipe", "nvidia"); throws std::invalid_argument listing the known names.
 const DeviceProfile& profileByName(std::string_view name);
 /// Sets one field by name to an alternative value ("maskedFragmentLanes" = sample|skip,

@@ -148,6 +148,10 @@ TEST(DeviceProfile, LookupAndUnknownNames) {
   EXPECT_TRUE(emu::profileByName("lavapipe").verified);
   EXPECT_FALSE(emu::profileByName("nvidia").verified);
   EXPECT_EQ(emu::profileForDevice("llvmpipe (LLVM 15.0.6, 256 bits)").name, "lavapipe");
+  // SwiftShader (issue 18): found by its device name, unverified until its own choices are measured.
+  EXPECT_EQ(emu::profileForDevice("SwiftShader Device (Subzero)").name, "swiftshader");
+  EXPECT_FALSE(emu::profileByName("swiftshader").verified);
+  EXPECT_EQ(emu::profileByName("swiftshader").loopIterationLimit, 0u);
   EXPECT_THROW(emu::profileByName("voodoo2"), std::invalid_argument);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Fragment), emu::DenormMode::Flush);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Compute), emu::DenormMode::Preserve);

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 
 namespace shadetwin::vk {
 
@@ -36,7 +39,27 @@ std::string lower(std::string s) {
   return s;
 }
 
+// The project's own drivers (issue 18): SwiftShader's ICD, which scripts/setup.sh extracts into assets/swiftshader/,
+// is added to the loader's search (VK_ADD_DRIVER_FILES, honoured by Debian's loader 1.3.239) before the first
+// instance, so `devices` lists it and `--device swiftshader` works with nothing set by hand. Entries the user
+// set stay first; lavapipe stays the default device.
+void registerProjectDrivers() {
+  static const bool once = [] {
+#ifdef SHADETWIN_SWIFTSHADER_ICD
+    if (FILE* f = std::fopen(SHADETWIN_SWIFTSHADER_ICD, "r")) {
+      std::fclose(f);
+      const char* old = std::getenv("VK_ADD_DRIVER_FILES");
+      std::string v = old && *old ? std::string(old) + ":" + SHADETWIN_SWIFTSHADER_ICD : std::string(SHADETWIN_SWIFTSHADER_ICD);
+      if (!old || std::string(old).find(SHADETWIN_SWIFTSHADER_ICD) == std::string::npos) setenv("VK_ADD_DRIVER_FILES", v.c_str(), 1);
+    }
+#endif
+    return true;
+  }();
+  (void)once;
+}
+
 VkInstance makeInstance(bool validation) {
+  registerProjectDrivers();
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "shadetwin";
   app.apiVersion = VK_API_VERSION_1_1;
