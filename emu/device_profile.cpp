@@ -45,11 +45,14 @@ const DeviceProfile& nvidiaProfile() {
 const DeviceProfile& swiftshaderProfile() {
   // Issue 18, started: SwiftShader (Google's CPU Vulkan driver, from @sparticuz/chromium 147.0.0) is found and
   // runs every suite, under lavapipe's choices as a stand-in until its own are measured and modelled
-  // (docs/RESULTS.md, "SwiftShader"). Unverified.
+  // (docs/RESULTS.md, "SwiftShader"). Measured so far: both stages flush denormals. Unverified.
   static const DeviceProfile p = [] {
     DeviceProfile q = lavapipeProfile();
     q.name = "swiftshader", q.verified = false;
-    q.provenance = "stand-in: lavapipe's fields, not yet SwiftShader's (issue 18)";
+    q.provenance = "lavapipe's fields as a stand-in (issue 18), except what was measured on SwiftShader: denormals "
+                   "flushed in the compute stage too (verify math: compute 260000/260000 against C++ with FTZ|DAZ, "
+                   "257603 against preserving)";
+    q.denormCompute = DenormMode::Flush;
     q.raster.verified = false, q.implicitLodVerified = false;
     q.loopIterationLimit = 0;  // SwiftShader's Reactor JIT has no loop limiter
     return q;

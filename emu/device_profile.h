@@ -76,7 +76,8 @@ struct DeviceProfile {
 
 const DeviceProfile& lavapipeProfile();
 const DeviceProfile& nvidiaProfile();
-/// SwiftShader (issue 18): lavapipe's fields as a stand-in, unverified, no loop limit.
+/// SwiftShader (issue 18): lavapipe's fields as a stand-in except the measured ones (denormals flushed in
+/// both stages), unverified, no loop limit.
 const DeviceProfile& swiftshaderProfile();
 /// Profile by name ("lavapipe", "nvidia"); throws std::invalid_argument listing the known names.
 const DeviceProfile& profileByName(std::string_view name);

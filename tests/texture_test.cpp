@@ -152,6 +152,7 @@ TEST(DeviceProfile, LookupAndUnknownNames) {
   EXPECT_EQ(emu::profileForDevice("SwiftShader Device (Subzero)").name, "swiftshader");
   EXPECT_FALSE(emu::profileByName("swiftshader").verified);
   EXPECT_EQ(emu::profileByName("swiftshader").loopIterationLimit, 0u);
+  EXPECT_EQ(emu::swiftshaderProfile().denorm(emu::Stage::Compute), emu::DenormMode::Flush);  // verify math, measured
   EXPECT_THROW(emu::profileByName("voodoo2"), std::invalid_argument);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Fragment), emu::DenormMode::Flush);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Compute), emu::DenormMode::Preserve);

@@ -87,19 +87,24 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
   vk::Context ctx({opts.device, opts.validate});
   const emu::DeviceProfile& profile = emu::profileForDevice(ctx.deviceName());
   const bool fragFlush = profile.denorm(emu::Stage::Fragment) == emu::DenormMode::Flush;
+  const bool compFlush = profile.denorm(emu::Stage::Compute) == emu::DenormMode::Flush;
   out << "device: " << ctx.deviceName() << " (profile " << profile.name << (profile.verified ? "" : ", unverified")
-      << "; fragment denormals " << (fragFlush ? "flushed" : "preserved") << ")\n";
+      << "; compute denormals " << (compFlush ? "flushed" : "preserved") << ", fragment denormals " << (fragFlush ? "flushed" : "preserved")
+      << ")\n";
   const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   vk::Kernel comp(ctx, vk::Stage::Compute, kSpv_verify_math_comp, layout, 12);
   vk::Kernel frag(ctx, vk::Stage::Fragment, kSpv_verify_math_frag, layout, 12, kSpv_fullscreen_vert);
   const size_t n = opts.count;
   vk::Buffer inBuf(ctx, n * 12), outBuf(ctx, n * 12);
   std::vector<float> in(3 * n), scalar(3 * n), simd(3 * n), scalarFlush(3 * n), gpuComp(3 * n), gpuFrag(3 * n);
+  uint64_t stageSame[2][2] = {{0, 0}, {0, 0}};  // [compute, fragment][preserve, flush]: each stage against either C++ mode
   const size_t nEdge = sizeof(kEdge) / sizeof(kEdge[0]);
   uint64_t identical = 0, total = 0;
   out << std::left << std::setw(12) << "function" << std::right << std::setw(22) << "identical/total" << std::setw(14)
       << "max ulp" << std::setw(12) << "NaN vs num"
-      << "   (identical: scalar = simd x8 = vulkan compute, and C++ = vulkan fragment)\n";
+      << std::setw(22) << "compute P / F" << std::setw(22) << "fragment P / F"
+      << "   (identical: scalar = simd x8 = vulkan compute, and C++ = vulkan fragment, each under its stage's mode;"
+         " P / F: the stage against C++ with denormals preserved / flushed)\n";
   for (int fn = 0; fn < mathKernelCount(); ++fn) {
     std::mt19937 rng(uint32_t(opts.seed * 1000003u + uint64_t(fn)));
     for (size_t i = 0; i < n; ++i)
@@ -112,7 +117,7 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
       }
     evalMathKernel(fn, in.data(), scalar.data(), n, 1, false);
     evalMathKernel(fn, in.data(), simd.data(), n, 8, false);
-    evalMathKernel(fn, in.data(), scalarFlush.data(), n, 1, fragFlush);
+    evalMathKernel(fn, in.data(), scalarFlush.data(), n, 1, true);
     std::memcpy(inBuf.data(), in.data(), n * 12);
     struct { int32_t fn; uint32_t count, width; } push{fn, uint32_t(n), 1024};
     const vk::Binding binds[] = {{layout[0], inBuf.handle()}, {layout[1], outBuf.handle()}};
@@ -121,15 +126,20 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
     std::memset(outBuf.data(), 0, n * 12);
     frag.run(binds, &push, uint32_t(n), 1024);
     std::memcpy(gpuFrag.data(), outBuf.data(), n * 12);
-    uint64_t same = 0, nanDiff = 0;
+    uint64_t same = 0, nanDiff = 0, st[2][2] = {{0, 0}, {0, 0}};
     int64_t maxUlp = 0;
     for (size_t i = 0; i < n; ++i) {
-      bool ok = true;
+      bool ok = true, s[2][2] = {{true, true}, {true, true}};
       for (int k = 0; k < 3; ++k) {
         size_t j = 3 * i + k;
-        ok = ok && sameBits(scalar[j], simd[j]) && sameBits(scalar[j], gpuComp[j]) && sameBits(scalarFlush[j], gpuFrag[j]);
+        s[0][0] = s[0][0] && sameBits(scalar[j], gpuComp[j]), s[0][1] = s[0][1] && sameBits(scalarFlush[j], gpuComp[j]);
+        s[1][0] = s[1][0] && sameBits(scalar[j], gpuFrag[j]), s[1][1] = s[1][1] && sameBits(scalarFlush[j], gpuFrag[j]);
+        ok = ok && sameBits(scalar[j], simd[j]);
       }
+      ok = ok && s[0][compFlush] && s[1][fragFlush];
       same += ok;
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) st[a][b] += s[a][b];
       double ref = reference(fn, in[3 * i], in[3 * i + 1], in[3 * i + 2]);
       float rf = float(ref);
       if (std::isnan(rf) != std::isnan(scalar[3 * i])) ++nanDiff;  // domain conventions, see DESIGN.md
@@ -138,8 +148,13 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
     identical += same;
     total += n;
     out << std::left << std::setw(12) << mathKernelName(fn) << std::right << std::setw(10) << same << "/" << std::setw(11)
-        << std::left << n << std::right << std::setw(10) << maxUlp << std::setw(12) << nanDiff << "\n";
+        << std::left << n << std::right << std::setw(10) << maxUlp << std::setw(12) << nanDiff << std::setw(12) << st[0][0] << " / "
+        << std::setw(7) << st[0][1] << std::setw(12) << st[1][0] << " / " << std::setw(7) << st[1][1] << "\n";
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) stageSame[a][b] += st[a][b];
   }
+  out << "stages: compute " << stageSame[0][0] << " / " << stageSame[0][1] << ", fragment " << stageSame[1][0] << " / "
+      << stageSame[1][1] << " of " << total + 0 << " identical with denormals preserved / flushed\n";
   if (ctx.validationEnabled())
     out << "validation errors: " << ctx.validationErrors() << (ctx.validationErrors() ? " (" + ctx.lastValidationMessage + ")" : "") << "\n";
   out << "math: " << identical << "/" << total << " bit-identical\n";
