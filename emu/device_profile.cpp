@@ -45,7 +45,8 @@ const DeviceProfile& nvidiaProfile() {
 const DeviceProfile& swiftshaderProfile() {
   // Issue 18, started: SwiftShader (Google's CPU Vulkan driver, from @sparticuz/chromium 147.0.0) is found and
   // runs every suite, under lavapipe's choices as a stand-in until its own are measured and modelled
-  // (docs/RESULTS.md, "SwiftShader"). Measured so far: both stages flush denormals. Unverified.
+  // (docs/RESULTS.md, "SwiftShader"). Measured so far: both stages flush denormals; the float filter lerps are
+  // a separate multiply and add. Unverified.
   static const DeviceProfile p = [] {
     DeviceProfile q = lavapipeProfile();
     q.name = "swiftshader", q.verified = false;
@@ -53,6 +54,9 @@ const DeviceProfile& swiftshaderProfile() {
                    "flushed in the compute stage too (verify math: compute 260000/260000 against C++ with FTZ|DAZ, "
                    "257603 against preserving)";
     q.denormCompute = DenormMode::Flush;
+    // verify texture --filters bilinear,trilinear --count 2000 --seed 3 on SwiftShader: 163920/196608 with the
+    // separate multiply and add of SamplerCore's blends, 111799/196608 fused.
+    q.filterLerpFma = false;
     q.raster.verified = false, q.implicitLodVerified = false;
     q.loopIterationLimit = 0;  // SwiftShader's Reactor JIT has no loop limiter
     return q;
@@ -101,6 +105,8 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
     p.lodFractionBits = parseInt(key, v, 0, 23);
   } else if (key == "unorm8FixedPoint") {
     p.unorm8FixedPoint = parseBool(key, v);
+  } else if (key == "filterLerpFma") {
+    p.filterLerpFma = parseBool(key, v);
   } else if (key == "loopIterationLimit") {
     p.loopIterationLimit = uint32_t(parseInt(key, v, 0, 1 << 30));
   } else if (key == "denormCompute") {
@@ -111,7 +117,7 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
     throw std::invalid_argument("unknown profile field '" + std::string(key) +
                                 "' (known: maskedFragmentLanes, implicitNearestShortcut, computeVectorLanes, "
                                 "fragmentVectorW, fragmentVectorH, filterWeightFracBits, lodFractionBits, "
-                                "unorm8FixedPoint, denormCompute, denormFragment, loopIterationLimit)");
+                                "unorm8FixedPoint, denormCompute, denormFragment, loopIterationLimit, filterLerpFma)");
   }
   p.verified = false;
   p.name += " [" + std::string(key) + "=" + std::string(v) + "]";

@@ -71,13 +71,16 @@ struct DeviceProfile {
   // past it every loop exits, so a kernel that loops longer returns partial sums (measured with the
   // glints lighting table: docs/RESULTS.md). Drivers split such work so no invocation reaches it.
   uint32_t loopIterationLimit;
+  // Float-path filter lerp: true, one fused fma(w, b - a, a) (lavapipe); false, a + w (b - a) as a
+  // separate multiply and add (SwiftShader's SamplerCore blends, issue 18: under test, unverified).
+  bool filterLerpFma = true;
   DenormMode denorm(Stage s) const { return s == Stage::Compute ? denormCompute : denormFragment; }
 };
 
 const DeviceProfile& lavapipeProfile();
 const DeviceProfile& nvidiaProfile();
 /// SwiftShader (issue 18): lavapipe's fields as a stand-in except the measured ones (denormals flushed in
-/// both stages), unverified, no loop limit.
+/// both stages, unfused filter lerps), unverified, no loop limit.
 const DeviceProfile& swiftshaderProfile();
 /// Profile by name ("lavapipe", "nvidia"); throws std::invalid_argument listing the known names.
 const DeviceProfile& profileByName(std::string_view name);

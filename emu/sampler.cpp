@@ -150,8 +150,15 @@ template <class F> struct C4 {
   F r, g, b, a;
 };
 
-template <class F> C4<F> lerp4(F w, C4<F> a, C4<F> b) {
-  return {lfma(w, b.r - a.r, a.r), lfma(w, b.g - a.g, a.g), lfma(w, b.b - a.b, a.b), lfma(w, b.a - a.a, a.a)};
+// One filter lerp per channel: fused fma(w, b - a, a), or a + w (b - a) with a separate multiply and add
+// (DeviceProfile::filterLerpFma).
+template <class F> F lerp1(F w, F a, F b, bool fused) {
+  if (fused) return lfma(w, b - a, a);
+  const F p = w * (b - a);
+  return a + p;
+}
+template <class F> C4<F> lerp4(F w, C4<F> a, C4<F> b, bool fused) {
+  return {lerp1(w, a.r, b.r, fused), lerp1(w, a.g, b.g, fused), lerp1(w, a.b, b.b, fused), lerp1(w, a.a, b.a, fused)};
 }
 
 // Texel loads: one lane reads directly, emu lanes gather.
@@ -210,7 +217,8 @@ C4<F> sampleLevelFloat(const Texture& t, const DeviceProfile& dev, typename Lane
   F a = weight(x.w, dev, filter), b = weight(y.w, dev, filter);
   C4<F> t00 = loadTexel(t, level, layer, x.i0, y.i0), t10 = loadTexel(t, level, layer, x.i1, y.i0);
   C4<F> t01 = loadTexel(t, level, layer, x.i0, y.i1), t11 = loadTexel(t, level, layer, x.i1, y.i1);
-  return lerp4(b, lerp4(a, t00, t10), lerp4(a, t01, t11));
+  const bool fused = dev.filterLerpFma;
+  return lerp4(b, lerp4(a, t00, t10, fused), lerp4(a, t01, t11, fused), fused);
 }
 
 
@@ -361,7 +369,7 @@ Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
   C4<float> c = sampleLevelFloat<float>(tex, dev, l0, layer, u, v, lane, s.addressU, s.addressV);
   if (lerpLevels) {
     C4<float> c1 = sampleLevelFloat<float>(tex, dev, l1, layer, u, v, lane, s.addressU, s.addressV);
-    c = lerp4(lodFraction(f, dev), c, c1);
+    c = lerp4(lodFraction(f, dev), c, c1, dev.filterLerpFma);
   }
   return {c.r, c.g, c.b, c.a};
 }
@@ -377,10 +385,16 @@ inline Px loadPx(const uint8_t* p) {
   std::memcpy(&r, p, 16);
   return r;
 }
-inline Px lerpPx(float w, Px a, Px b) {
+inline Px lerpPx(float w, Px a, Px b, bool fused) {
   const Px d = b - a;
   Px r;
-  for (int c = 0; c < 4; ++c) r[c] = __builtin_fmaf(w, d[c], a[c]);
+  if (fused)
+    for (int c = 0; c < 4; ++c) r[c] = __builtin_fmaf(w, d[c], a[c]);
+  else
+    for (int c = 0; c < 4; ++c) {
+      const float p = w * d[c];
+      r[c] = a[c] + p;
+    }
   return r;
 }
 
@@ -408,11 +422,11 @@ LevelTaps<N> levelTaps(const Texture& t, const DeviceProfile& dev, I32<N> level,
 }
 
 template <int N>
-Px bilinearPx(const uint8_t* base, const LevelTaps<N>& t, int i) {
+Px bilinearPx(const uint8_t* base, const LevelTaps<N>& t, int i, bool fused) {
   const float a = t.a[i];
-  Px r0 = lerpPx(a, loadPx(base + uint32_t(t.o00[i])), loadPx(base + uint32_t(t.o10[i])));
-  Px r1 = lerpPx(a, loadPx(base + uint32_t(t.o01[i])), loadPx(base + uint32_t(t.o11[i])));
-  return lerpPx(t.b[i], r0, r1);
+  Px r0 = lerpPx(a, loadPx(base + uint32_t(t.o00[i])), loadPx(base + uint32_t(t.o10[i])), fused);
+  Px r1 = lerpPx(a, loadPx(base + uint32_t(t.o01[i])), loadPx(base + uint32_t(t.o11[i])), fused);
+  return lerpPx(t.b[i], r0, r1, fused);
 }
 
 template <int N>
@@ -428,8 +442,8 @@ void sampleBlockLinearRgba32f(const Texture& tex, const DeviceProfile& dev, I32<
   }
   const auto& levels = tex.levels();
   for (int i = 0; i < count; ++i) {
-    Px c = bilinearPx(levels[size_t(l0[i])].data(), t0, i);
-    if (lerpLane[i]) c = lerpPx(fq[i], c, bilinearPx(levels[size_t(l1[i])].data(), t1, i));
+    Px c = bilinearPx(levels[size_t(l0[i])].data(), t0, i, dev.filterLerpFma);
+    if (lerpLane[i]) c = lerpPx(fq[i], c, bilinearPx(levels[size_t(l1[i])].data(), t1, i, dev.filterLerpFma), dev.filterLerpFma);
     std::memcpy(out + 4 * i, &c, 16);
   }
 }
@@ -463,7 +477,7 @@ void sampleBlock(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
   C4<F> c = sampleLevelFloat<F>(tex, dev, l0, layer, u, v, lane, s.addressU, s.addressV);
   if (anyLerp) {
     C4<F> c1 = sampleLevelFloat<F>(tex, dev, l1, layer, u, v, lane, s.addressU, s.addressV);
-    C4<F> m = lerp4(lodFraction(f, dev), c, c1);
+    C4<F> m = lerp4(lodFraction(f, dev), c, c1, dev.filterLerpFma);
     c = {select(lerpMask, m.r, c.r), select(lerpMask, m.g, c.g), select(lerpMask, m.b, c.b), select(lerpMask, m.a, c.a)};
   }
   for (int i = 0; i < count; ++i) {

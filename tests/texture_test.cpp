@@ -131,6 +131,25 @@ TEST(Sampler, Unorm8FixedPointPathMatchesLavapipeFacts) {
   EXPECT_NE(n.r, r.r);
 }
 
+TEST(Sampler, FilterLerpIsFusedOrAMultiplyThenAnAdd) {
+  // DeviceProfile::filterLerpFma: lavapipe fma(w, b - a, a); SwiftShader a + w (b - a), rounded twice.
+  // A 2x1 R32F texture and many u: both forms are reproduced exactly, and they differ for some u.
+  const float a = 0.1f, b = 0.7f;
+  emu::Texture t(emu::Format::R32F, 2, 1, 1, {floats({a, b})});
+  emu::SamplerDesc s;  // linear, clamp
+  int differ = 0;
+  for (int k = 1; k < 200; ++k) {
+    const float u = 0.25f + 0.5f * float(k) / 200.0f;  // between the texel centres: w = 2u - 0.5
+    const float w = u * 2.0f - 0.5f;
+    const float fused = std::fma(w, b - a, a);
+    const float p = w * (b - a), split = a + p;
+    EXPECT_EQ(emu::textureLod(t, s, emu::lavapipeProfile(), u, 0.5f, 0, 0).r, fused) << u;
+    EXPECT_EQ(emu::textureLod(t, s, emu::swiftshaderProfile(), u, 0.5f, 0, 0).r, split) << u;
+    differ += fused != split;
+  }
+  EXPECT_GT(differ, 10);
+}
+
 TEST(Sampler, TrilinearBlendsLevelsWithFma) {
   emu::Texture t(emu::Format::R32F, 2, 2, 1, {floats({1, 1, 1, 1}), floats({3})});
   emu::SamplerDesc s;
@@ -153,6 +172,8 @@ TEST(DeviceProfile, LookupAndUnknownNames) {
   EXPECT_FALSE(emu::profileByName("swiftshader").verified);
   EXPECT_EQ(emu::profileByName("swiftshader").loopIterationLimit, 0u);
   EXPECT_EQ(emu::swiftshaderProfile().denorm(emu::Stage::Compute), emu::DenormMode::Flush);  // verify math, measured
+  EXPECT_FALSE(emu::swiftshaderProfile().filterLerpFma);  // verify texture, measured
+  EXPECT_TRUE(emu::lavapipeProfile().filterLerpFma);
   EXPECT_THROW(emu::profileByName("voodoo2"), std::invalid_argument);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Fragment), emu::DenormMode::Flush);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Compute), emu::DenormMode::Preserve);
