@@ -34,6 +34,38 @@ std::filesystem::path dir() {
   std::filesystem::create_directories(d);
   return d;
 }
+
+// G x D per covered pixel with F G outside (the technique's model), the kernel's frame and footprint
+// (as sweep --technique glints forms them), away from the silhouette (cos_o >= 0.5: the table has no
+// horizon); -1 elsewhere. RGB per pixel.
+std::vector<double> gxdTruth(const shadetwin::Scene& scene, const shadetwin::GBuffer& g, const shadetwin::EnvironmentMap& e,
+                             uint32_t pairs, uint64_t seed) {
+  const shadetwin::NormalMap nm = shadetwin::glintMaterialMap(scene.materials[0]);
+  const shadetwin::reference::Environment renv(shadetwin::EnvImage{e.width, e.height, e.levels[0].data()}, 1.0);
+  const shadetwin::CameraRays cam = shadetwin::cameraRays(scene);
+  std::vector<double> truth(size_t(g.width) * g.height * 3, -1.0);
+  for (size_t p = 0; p < size_t(g.width) * g.height; ++p) {
+    const float* t = g.texels.data() + p * shadetwin::kGbufFloats;
+    if (t[3] == 0.0f) continue;
+    shadetwin::GlintPixel px = shadetwin::glintPixelOf(t, cam.eye, scene.materials[0], nm, nullptr, p);
+    px.fgOutside = true;
+    if (dot(px.wo, px.n) < 0.5) continue;
+    const shadetwin::GxdResult r = shadetwin::glintGxd(px, renv, pairs, seed);
+    for (int k = 0; k < 3; ++k) truth[3 * p + size_t(k)] = r.rgb[k];
+  }
+  return truth;
+}
+
+// Mean absolute error over the truth's values relative to their mean; `count` the values compared.
+double relativeError(const std::vector<float>& img, const std::vector<double>& truth, size_t& count) {
+  double err = 0, sum = 0;
+  count = 0;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    if (truth[i] < 0) continue;
+    err += std::fabs(double(img[4 * (i / 3) + i % 3]) - truth[i]), sum += truth[i], ++count;
+  }
+  return err / sum;
+}
 }  // namespace
 
 TEST(ShadeGlints, KernelAgreesWithGxdOnABinCentredMapAndConvergesWithTheDegree) {
@@ -78,34 +110,15 @@ TEST(ShadeGlints, KernelAgreesWithGxdOnABinCentredMapAndConvergesWithTheDegree) 
   std::ostringstream quiet;
   const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);
   const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev);
-  // G x D per covered pixel, the kernel's frame and footprint (as sweep --technique glints forms them).
-  const shadetwin::NormalMap nm = shadetwin::glintMaterialMap(scene.materials[0]);
-  const shadetwin::reference::Environment renv(shadetwin::EnvImage{e.width, e.height, e.levels[0].data()}, 1.0);
-  const shadetwin::CameraRays cam = shadetwin::cameraRays(scene);
-  std::vector<double> truth(size_t(g.width) * g.height * 3, -1.0);
-  for (size_t p = 0; p < size_t(g.width) * g.height; ++p) {
-    const float* t = g.texels.data() + p * shadetwin::kGbufFloats;
-    if (t[3] == 0.0f) continue;
-    shadetwin::GlintPixel px = shadetwin::glintPixelOf(t, cam.eye, scene.materials[0], nm, nullptr, p);
-    px.fgOutside = true;
-    if (dot(px.wo, px.n) < 0.5) continue;  // away from the silhouette (the table has no horizon)
-    const shadetwin::GxdResult r = shadetwin::glintGxd(px, renv, 3000, 7);
-    for (int k = 0; k < 3; ++k) truth[3 * p + size_t(k)] = r.rgb[k];
-  }
+  const std::vector<double> truth = gxdTruth(scene, g, e, 3000, 7);
   double prev = 1e9;
   for (uint32_t order : {4u, 8u, 16u}) {
     scene.glintOrder = order;
     const shadetwin::ShadeInputs in = shadetwin::shadeInputsEmu(scene, *e.texture, dev);
     const std::vector<float> img = shadetwin::shadeEmu(scene, g, in, dev);
-    double err = 0, sum = 0;
     size_t count = 0;
-    for (size_t p = 0; p < size_t(g.width) * g.height; ++p)
-      for (int k = 0; k < 3; ++k) {
-        if (truth[3 * p + size_t(k)] < 0) continue;
-        err += std::fabs(double(img[4 * p + size_t(k)]) - truth[3 * p + size_t(k)]), sum += truth[3 * p + size_t(k)], ++count;
-      }
+    const double rel = relativeError(img, truth, count);  // mean absolute error relative to the mean radiance
     ASSERT_GT(count, 600u);
-    const double rel = err / sum;  // mean absolute error relative to the mean radiance
     RecordProperty("relerr_degree_" + std::to_string(order), std::to_string(rel));
     EXPECT_LT(rel, prev) << order;
     if (order == 16) EXPECT_LT(rel, 0.03);
@@ -368,32 +381,14 @@ TEST(ShadeGlints, FlatMapIsTheSmoothMicrofacetUpToTheFirstRingsCentre) {
   std::ostringstream quiet;
   const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);
   const shadetwin::GBuffer g = shadetwin::gbufferEmu(scene, dev);
-  const shadetwin::NormalMap nm = shadetwin::glintMaterialMap(scene.materials[0]);
-  const shadetwin::reference::Environment renv(shadetwin::EnvImage{e.width, e.height, e.levels[0].data()}, 1.0);
-  const shadetwin::CameraRays cam = shadetwin::cameraRays(scene);
-  std::vector<double> truth(size_t(g.width) * g.height * 3, -1.0);
-  for (size_t p = 0; p < size_t(g.width) * g.height; ++p) {
-    const float* t = g.texels.data() + p * shadetwin::kGbufFloats;
-    if (t[3] == 0.0f) continue;
-    shadetwin::GlintPixel px = shadetwin::glintPixelOf(t, cam.eye, scene.materials[0], nm, nullptr, p);
-    px.fgOutside = true;
-    if (dot(px.wo, px.n) < 0.5) continue;
-    const shadetwin::GxdResult r = shadetwin::glintGxd(px, renv, 4000, 5);
-    for (int k = 0; k < 3; ++k) truth[3 * p + size_t(k)] = r.rgb[k];
-  }
+  const std::vector<double> truth = gxdTruth(scene, g, e, 4000, 5);
   double prev = 1e9;
   for (float thetaMax : {40.0f, 10.0f, 2.0f}) {  // rings 9: the first ring's centre 2.2, 0.56, 0.11 degrees off
     scene.glintThetaMax = thetaMax * 3.14159265f / 180.0f;
     const std::vector<float> img = shadetwin::shadeEmu(scene, g, shadetwin::shadeInputsEmu(scene, *e.texture, dev), dev);
-    double err = 0, sum = 0;
     size_t count = 0;
-    for (size_t p = 0; p < size_t(g.width) * g.height; ++p)
-      for (int k = 0; k < 3; ++k) {
-        if (truth[3 * p + size_t(k)] < 0) continue;
-        err += std::fabs(double(img[4 * p + size_t(k)]) - truth[3 * p + size_t(k)]), sum += truth[3 * p + size_t(k)], ++count;
-      }
+    const double rel = relativeError(img, truth, count);
     ASSERT_GT(count, 300u);
-    const double rel = err / sum;
     RecordProperty("relerr_flat_theta_" + std::to_string(int(thetaMax)), std::to_string(rel));
     EXPECT_LT(rel, prev) << thetaMax;
     prev = rel;

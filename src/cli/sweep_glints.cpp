@@ -11,6 +11,8 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 
@@ -82,29 +84,53 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   }
   const uint32_t sceneOrder = scene.glintOrder;
   double glintMsAtScene = NAN, glintInputsAtScene = NAN, glintErrAtScene = NAN;
+  ShadeInputs inputsAtScene;  // the scene degree's tables, reused by the temporal study
+  // One setting on the emulator: its inputs (timed), a warm-up and the timed shading pass.
+  struct EmuRun {
+    ShadeInputs in;
+    std::vector<float> img;
+    double msIn = 0, ms = 0;
+  };
+  auto emuRun = [&](const Scene& sc) {
+    EmuRun r;
+    r.msIn = timeMs([&] { r.in = shadeInputsEmu(sc, *env.texture, *dev); });
+    shadeEmu(sc, g, r.in, *dev, r.img);  // warm-up
+    r.ms = timeMs([&] { shadeEmu(sc, g, r.in, *dev, r.img); });
+    return r;
+  };
+  // The same setting on the Vulkan device (when there is one): inputs and pass timed, the bits against
+  // the emulator's image, or why the device refused it.
+  struct VkRun {
+    double msIn = NAN, ms = NAN;
+    size_t same = 0;
+    std::string skipped;
+  };
+  auto vulkanRun = [&](const Scene& sc, const std::vector<float>& img) {
+    VkRun r;
+    if (!ctx) return r;
+    try {
+      ShadeInputs iv;
+      r.msIn = timeMs([&] { iv = shadeInputsVulkan(*ctx, sc, *env.texture); });
+      ShadePassVk pass(*ctx, sc, iv);
+      pass.run(gv);  // warm-up (pipeline)
+      const std::vector<float> v = pass.run(gv);
+      r.ms = pass.lastMs;
+      for (size_t i = 0; i < v.size(); ++i) r.same += std::memcmp(&v[i], &img[i], 4) == 0;
+    } catch (const vk::Error& e) {
+      r.skipped = e.what();
+    }
+    return r;
+  };
   for (uint32_t order : orders) {
     scene.glintOrder = order;
-    ShadeInputs in;
-    const double msIn = timeMs([&] { in = shadeInputsEmu(scene, *env.texture, *dev); });
-    std::vector<float> img;
-    shadeEmu(scene, g, in, *dev, img);  // warm-up
-    const double ms = timeMs([&] { shadeEmu(scene, g, in, *dev, img); });
-    double msVk = NAN, msInVk = NAN;
-    size_t same = 0;
-    std::string vkSkipped;
-    if (ctx) {
-      try {
-        ShadeInputs iv;
-        msInVk = timeMs([&] { iv = shadeInputsVulkan(*ctx, scene, *env.texture); });
-        ShadePassVk pass(*ctx, scene, iv);
-        pass.run(gv);  // warm-up (pipeline)
-        const std::vector<float> v = pass.run(gv);
-        msVk = pass.lastMs;
-        for (size_t i = 0; i < v.size(); ++i) same += std::memcmp(&v[i], &img[i], 4) == 0;
-      } catch (const vk::Error& e) {
-        vkSkipped = e.what();
-      }
-    }
+    const EmuRun e = emuRun(scene);
+    const ShadeInputs& in = e.in;
+    const std::vector<float>& img = e.img;
+    const double ms = e.ms, msIn = e.msIn;
+    const VkRun vr = vulkanRun(scene, img);
+    const double msVk = vr.ms, msInVk = vr.msIn;
+    const size_t same = vr.same;
+    const std::string& vkSkipped = vr.skipped;
     const ImageMetrics m = imageMetrics(img, ref, covered);
     csv << "glints," << order << "," << std::setprecision(2) << ms << "," << msVk << "," << msIn << "," << msInVk << ","
         << std::setprecision(6) << m.rmse << "," << m.relMse << "," << std::setprecision(3) << m.psnr << "," << same << "," << img.size()
@@ -117,7 +143,7 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
     log << "\n";
     if (!vkSkipped.empty()) log << "    vulkan not run: " << vkSkipped << "\n";
     glSeries.x.push_back(ms), glSeries.y.push_back(m.rmse);
-    if (order == sceneOrder) glintMsAtScene = ms, glintInputsAtScene = msIn, glintErrAtScene = m.rmse;
+    if (order == sceneOrder) glintMsAtScene = ms, glintInputsAtScene = msIn, glintErrAtScene = m.rmse, inputsAtScene = in;
   }
   // The histogram's binning at the scene's degree (the paper's Figs. 11, 15): error against the same reference.
   scene.glintOrder = sceneOrder;
@@ -141,19 +167,22 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
         << " ms  SATs " << in.glints->satBytes / (1 << 20) << " MiB  RMSE " << std::setprecision(5) << m.rmse << "  PSNR "
         << std::setprecision(2) << m.psnr << " dB\n";
   }
+  // A grid RINGSxSECTORS of --glint-views / --glint-lobes.
+  auto parseGrid = [](const std::string& g, const char* flag) {
+    unsigned rings = 0, sectors = 0;
+    if (std::sscanf(g.c_str(), "%ux%u", &rings, &sectors) != 2 || rings < 2 || rings > 513 || sectors < 1 || sectors > 1024)
+      throw std::invalid_argument(std::string(flag) + ": '" + g + "' is not RINGSxSECTORS (rings 2-513, sectors 1-1024)");
+    return std::pair<uint32_t, uint32_t>{rings, sectors};
+  };
   // The lighting table's view grid at the scene's degree (the paper's Fig. 17): build time, memory, error.
   std::stringstream vl(opts.glintViews);
   while (std::getline(vl, spec, ',')) {
-    unsigned rings = 0, sectors = 0;
-    if (std::sscanf(spec.c_str(), "%ux%u", &rings, &sectors) != 2 || rings < 2 || rings > 513 || sectors < 1 || sectors > 1024)
-      throw std::invalid_argument("--glint-views: '" + spec + "' is not RINGSxSECTORS (rings 2-513, sectors 1-1024)");
     Scene sv = scene;
-    sv.glintViewRings = rings, sv.glintViewSectors = sectors;
-    const ShadeInputs in = shadeInputsEmu(sv, *env.texture, *dev);
-    std::vector<float> img;
-    shadeEmu(sv, g, in, *dev, img);  // warm-up
-    const double ms = timeMs([&] { shadeEmu(sv, g, in, *dev, img); });
-    const ImageMetrics m = imageMetrics(img, ref, covered);
+    std::tie(sv.glintViewRings, sv.glintViewSectors) = parseGrid(spec, "--glint-views");
+    const EmuRun e = emuRun(sv);
+    const ShadeInputs& in = e.in;
+    const double ms = e.ms;
+    const ImageMetrics m = imageMetrics(e.img, ref, covered);
     csv << "glints-views," << spec << "," << std::setprecision(2) << ms << ",," << in.glints->lightingMs << ",," << std::setprecision(6)
         << m.rmse << "," << m.relMse << "," << std::setprecision(3) << m.psnr << ",," << in.glints->lightingBytes << "\n";
     log << "  glints views " << std::setw(8) << spec << " (degree " << sceneOrder << ")  emu " << std::setprecision(1) << ms
@@ -164,30 +193,16 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   // and on the Vulkan device the bits and the time.
   std::stringstream ll(opts.glintLobes);
   while (std::getline(ll, spec, ',')) {
-    unsigned rings = 0, sectors = 0;
-    if (std::sscanf(spec.c_str(), "%ux%u", &rings, &sectors) != 2 || rings < 2 || rings > 513 || sectors < 1 || sectors > 1024)
-      throw std::invalid_argument("--glint-lobes: '" + spec + "' is not RINGSxSECTORS (rings 2-513, sectors 1-1024)");
     Scene sl = scene;
-    sl.glintLobeRings = rings, sl.glintLobeSectors = sectors;
-    const ShadeInputs in = shadeInputsEmu(sl, *env.texture, *dev);
-    std::vector<float> img;
-    shadeEmu(sl, g, in, *dev, img);  // warm-up
-    const double ms = timeMs([&] { shadeEmu(sl, g, in, *dev, img); });
-    double msVk = NAN;
-    size_t same = 0;
-    std::string vkSkipped;
-    if (ctx) {
-      try {
-        const ShadeInputs iv = shadeInputsVulkan(*ctx, sl, *env.texture);
-        ShadePassVk pass(*ctx, sl, iv);
-        pass.run(gv);
-        const std::vector<float> v = pass.run(gv);
-        msVk = pass.lastMs;
-        for (size_t i = 0; i < v.size(); ++i) same += std::memcmp(&v[i], &img[i], 4) == 0;
-      } catch (const vk::Error& e) {
-        vkSkipped = e.what();
-      }
-    }
+    std::tie(sl.glintLobeRings, sl.glintLobeSectors) = parseGrid(spec, "--glint-lobes");
+    const EmuRun e = emuRun(sl);
+    const ShadeInputs& in = e.in;
+    const std::vector<float>& img = e.img;
+    const double ms = e.ms;
+    const VkRun vr = vulkanRun(sl, img);
+    const double msVk = vr.ms;
+    const size_t same = vr.same;
+    const std::string& vkSkipped = vr.skipped;
     const ImageMetrics m = imageMetrics(img, ref, covered);
     csv << "glints-lobes," << spec << "," << std::setprecision(2) << ms << "," << msVk << "," << in.glints->lobeMs << ",," << std::setprecision(6)
         << m.rmse << "," << m.relMse << "," << std::setprecision(3) << m.psnr << "," << same << "," << in.glints->lobeBytes << "\n";
@@ -207,7 +222,7 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
     log << "  temporal: not run (it needs the scene's degree " << sceneOrder << " in --glint-orders and a --samples ladder)\n";
   if (opts.glintFrames > 1 && !gxdMs.empty() && !std::isnan(glintMsAtScene)) {
     const uint32_t pairs = std::max<uint32_t>(1, uint32_t(std::lround(glintMsAtScene / (gxdMs.back() / ladder.back()))));
-    const ShadeInputs in = shadeInputsEmu(scene, *env.texture, *dev);
+    const ShadeInputs& in = inputsAtScene;  // built by the degree loop (the tables do not depend on the camera)
     const Vec3 eye0 = scene.camera.eye, tgt = scene.camera.target;
     const char* names[4] = {"reference", "glints", "glints-gxd (fixed seed)", "glints-gxd (new seed per frame)"};
     std::vector<float> prev[4], cur[4];
