@@ -11,7 +11,7 @@ const DeviceProfile& lavapipeProfile() {
   static const DeviceProfile p{
       "lavapipe", true,
       "Mesa 22.3.6 llvmpipe (LLVM 15, 256-bit), measured with `shadetwin verify texture` and ../shared/facts/lavapipe.md",
-      /*filterWeightFracBits=*/0, /*lodFractionBits=*/0, /*unorm8FixedPoint=*/true,
+      /*filterWeightFracBits=*/0, /*lodFractionBits=*/0, DeviceProfile::Unorm8Path::Fixed8,
       /*computeVectorLanes=*/8, /*fragmentVectorW=*/4, /*fragmentVectorH=*/2,
       // masked lanes sample: verify texture --implicit-lod (docs/DESIGN.md s3, issue 14)
       DeviceProfile::MaskedFragmentLanes::Sample, DenormMode::Preserve, DenormMode::Flush,
@@ -31,7 +31,7 @@ const DeviceProfile& nvidiaProfile() {
       "nvidia", false,
       "public documentation only (CUDA programming guide, texture fetching: 9-bit weights with 8 fraction bits); "
       "not yet measured on a GPU",
-      /*filterWeightFracBits=*/8, /*lodFractionBits=*/8, /*unorm8FixedPoint=*/false,
+      /*filterWeightFracBits=*/8, /*lodFractionBits=*/8, DeviceProfile::Unorm8Path::Float,
       /*computeVectorLanes=*/1, /*fragmentVectorW=*/1, /*fragmentVectorH=*/1,
       DeviceProfile::MaskedFragmentLanes::Skip, DenormMode::Preserve, DenormMode::Preserve,
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
@@ -57,6 +57,12 @@ const DeviceProfile& swiftshaderProfile() {
     // verify texture --filters bilinear,trilinear --count 2000 --seed 3 on SwiftShader: 163920/196608 with the
     // separate multiply and add of SamplerCore's blends, 111799/196608 fused.
     q.filterLerpFma = false;
+    // SwiftShader's SamplerCore (issue 18): its addressing, LOD-to-level rules and 16-bit RGBA8 path, every
+    // explicit-LOD lane sampled alone (SpirvShaderSampling.cpp loops over the lanes), SIMD width 4 (2x2 quads).
+    q.texAddressing = DeviceProfile::TexAddressing::Reactor;
+    q.mipSelection = DeviceProfile::MipSelection::Reactor;
+    q.unorm8Path = DeviceProfile::Unorm8Path::Reactor;
+    q.computeVectorLanes = 4, q.fragmentVectorW = 2, q.fragmentVectorH = 2;
     q.raster.verified = false, q.implicitLodVerified = false;
     q.loopIterationLimit = 0;  // SwiftShader's Reactor JIT has no loop limiter
     return q;
@@ -77,6 +83,12 @@ int parseInt(std::string_view key, std::string_view v, int lo, int hi) {
     throw std::invalid_argument("profile field " + std::string(key) + ": expected an integer in [" + std::to_string(lo) +
                                 ", " + std::to_string(hi) + "], got '" + std::string(v) + "'");
   return r;
+}
+// gallivm (Mesa's sampler) or reactor (SwiftShader's SamplerCore): true for reactor.
+bool parseStrategy(std::string_view key, std::string_view v) {
+  if (v == "gallivm") return false;
+  if (v == "reactor") return true;
+  throw std::invalid_argument("profile field " + std::string(key) + ": expected gallivm or reactor, got '" + std::string(v) + "'");
 }
 DenormMode parseDenorm(std::string_view key, std::string_view v) {
   if (v == "preserve") return DenormMode::Preserve;
@@ -104,7 +116,19 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
   } else if (key == "lodFractionBits") {
     p.lodFractionBits = parseInt(key, v, 0, 23);
   } else if (key == "unorm8FixedPoint") {
-    p.unorm8FixedPoint = parseBool(key, v);
+    p.unorm8Path = parseBool(key, v) ? DeviceProfile::Unorm8Path::Fixed8 : DeviceProfile::Unorm8Path::Float;
+  } else if (key == "unorm8Path") {
+    using U = DeviceProfile::Unorm8Path;
+    if (v == "float") p.unorm8Path = U::Float;
+    else if (v == "fixed8") p.unorm8Path = U::Fixed8;
+    else if (v == "fixed16") p.unorm8Path = U::Fixed16;
+    else if (v == "floatscaled") p.unorm8Path = U::FloatScaled;
+    else if (v == "reactor") p.unorm8Path = U::Reactor;
+    else throw std::invalid_argument("profile field unorm8Path: expected float, fixed8, fixed16, floatscaled or reactor, got '" + std::string(v) + "'");
+  } else if (key == "texAddressing") {
+    p.texAddressing = parseStrategy(key, v) ? DeviceProfile::TexAddressing::Reactor : DeviceProfile::TexAddressing::Gallivm;
+  } else if (key == "mipSelection") {
+    p.mipSelection = parseStrategy(key, v) ? DeviceProfile::MipSelection::Reactor : DeviceProfile::MipSelection::Gallivm;
   } else if (key == "filterLerpFma") {
     p.filterLerpFma = parseBool(key, v);
   } else if (key == "loopIterationLimit") {
@@ -117,7 +141,8 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
     throw std::invalid_argument("unknown profile field '" + std::string(key) +
                                 "' (known: maskedFragmentLanes, implicitNearestShortcut, computeVectorLanes, "
                                 "fragmentVectorW, fragmentVectorH, filterWeightFracBits, lodFractionBits, "
-                                "unorm8FixedPoint, denormCompute, denormFragment, loopIterationLimit, filterLerpFma)");
+                                "unorm8FixedPoint, unorm8Path, texAddressing, mipSelection, denormCompute, denormFragment, "
+                                "loopIterationLimit, filterLerpFma)");
   }
   p.verified = false;
   p.name += " [" + std::string(key) + "=" + std::string(v) + "]";

@@ -17,9 +17,16 @@ struct DeviceProfile {
   // Texture unit, float path (every lerp is one fma(w, b - a, a) on both profiles).
   int filterWeightFracBits;  // 0: exact float weights (x - floor(x)); n: weights rounded to n fraction bits
   int lodFractionBits;       // 0: exact lod fraction
-  // Texture unit, 8-bit path: lavapipe filters RGBA8 in 8.8 fixed point when both wrap modes are
-  // clamp-to-edge or repeat (Mesa's AoS sampler); otherwise the float path.
-  bool unorm8FixedPoint;
+  // Texture unit, 8-bit path. Fixed8 (lavapipe): RGBA8 filtered in 8.8 fixed point when both wrap
+  // modes are clamp-to-edge or repeat (Mesa's AoS sampler), otherwise the float path. Fixed16
+  // (SwiftShader's SamplerCore, every RGBA8 lookup): 0.16 fixed-point coordinates, texels as b << 8,
+  // bilinear weights as products of 16-bit fractions, mip blend with a 16-bit truncated fraction,
+  // result float(c) * (1.0f / 0xFF00) (emu/sampler_reactor.h). Float: the float path on texels
+  // b * (1.0f / 255). FloatScaled: the float path on texels float(b << 8), the result scaled by
+  // 1.0f / 0xFF00 (SwiftShader's 32-bit filtering of normalized formats). Reactor (SwiftShader, whose
+  // samplers filter in high precision): Fixed16 for FILTER_POINT (mag and min nearest), else FloatScaled.
+  enum class Unorm8Path { Float, Fixed8, Fixed16, FloatScaled, Reactor };
+  Unorm8Path unorm8Path;
   // Lane grouping of the sampler's per-vector decisions (need lerp, need linear): compute invocations
   // i / computeVectorLanes; fragment pixels in blocks of fragmentVectorW x fragmentVectorH. 1 x 1 (and
   // computeVectorLanes 1) means per-lane decisions.
@@ -74,6 +81,22 @@ struct DeviceProfile {
   // Float-path filter lerp: true, one fused fma(w, b - a, a) (lavapipe); false, a + w (b - a) as a
   // separate multiply and add (SwiftShader's SamplerCore blends, issue 18: under test, unverified).
   bool filterLerpFma = true;
+  // Texture unit strategies: whose arithmetic each stage of the sampler follows (docs/DESIGN.md s3).
+  // Addressing. Gallivm (Mesa lp_bld_sample): clamp as max(min(u W, W) - 1/2, 0), repeat of a
+  // power-of-two size as floor(u W - 1/2) & (W - 1), else frac(u) W, mirror 2|u/2 - rint(u/2)|.
+  // Reactor (SwiftShader SamplerCore::address): u first mapped into [0, 1) (clamp to [0, 1 - 2^-24],
+  // frac for repeat, mirror min(2 |u/2 - rint(u/2)|, 1 - 2^-24)), then scaled; nearest truncates,
+  // linear floors u W - 1/2 and clamps or wraps the two indices.
+  enum class TexAddressing { Gallivm, Reactor };
+  TexAddressing texAddressing = TexAddressing::Gallivm;
+  // LOD to levels. Gallivm: min/max clamps (minLod only when > 0), linear mip fraction zeroed where a
+  // level index is clamped, levels lerp only where some lane of the SIMD vector needs it (vector
+  // decisions above). Reactor: lod clamped to [minLod, maxLod] (both first clamped to [0, 12]);
+  // linear mip reads trunc(lod) and trunc(lod) + 1 (the view repeats its last level) and always blends
+  // with frac(lod), even at fraction 0 (an inf texel then gives NaN); nearest mip rint(lod); the
+  // min/mag choice of mixed filters from the clamped lod; every lane decides alone.
+  enum class MipSelection { Gallivm, Reactor };
+  MipSelection mipSelection = MipSelection::Gallivm;
   DenormMode denorm(Stage s) const { return s == Stage::Compute ? denormCompute : denormFragment; }
 };
 
@@ -86,7 +109,8 @@ const DeviceProfile& swiftshaderProfile();
 const DeviceProfile& profileByName(std::string_view name);
 /// Sets one field by name to an alternative value ("maskedFragmentLanes" = sample|skip,
 /// "implicitNearestShortcut" = true|false, "computeVectorLanes", "fragmentVectorW", "fragmentVectorH" =
-/// integer, "filterWeightFracBits", "lodFractionBits" = integer, "unorm8FixedPoint" = true|false,
+/// integer, "filterWeightFracBits", "lodFractionBits" = integer, "unorm8Path" = float|fixed8|fixed16|floatscaled|reactor
+/// ("unorm8FixedPoint" = true|false: fixed8|float), "texAddressing", "mipSelection" = gallivm|reactor,
 /// "denormCompute", "denormFragment" = preserve|flush, "loopIterationLimit" = integer), to measure what the profile's choice is worth.
 /// The profile is then marked unverified. Throws std::invalid_argument naming the key or the value.
 void setProfileField(DeviceProfile& p, std::string_view key, std::string_view value);

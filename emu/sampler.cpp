@@ -12,6 +12,7 @@
 
 #include "emu/fpenv.h"
 #include "emu/lanes.h"
+#include "emu/sampler_reactor.h"
 
 namespace emu {
 
@@ -162,9 +163,25 @@ template <class F> C4<F> lerp4(F w, C4<F> a, C4<F> b, bool fused) {
 }
 
 // Texel loads: one lane reads directly, emu lanes gather.
-inline C4<float> loadTexel(const Texture& t, int32_t level, int32_t layer, int32_t x, int32_t y) {
+// scaled: RGBA8 texels as float(b << 8), what SwiftShader's 32-bit filtering of normalized formats
+// blends before it scales the result by 1.0f / 0xFF00 (DeviceProfile::Unorm8Path::FloatScaled).
+inline C4<float> loadTexel(const Texture& t, int32_t level, int32_t layer, int32_t x, int32_t y, bool scaled = false) {
+  if (scaled) {
+    const auto b = t.loadBytes(uint32_t(level), uint32_t(layer), uint32_t(x), uint32_t(y));
+    return {float(b[0] << 8), float(b[1] << 8), float(b[2] << 8), float(b[3] << 8)};
+  }
   Texel4 v = t.loadFloat(uint32_t(level), uint32_t(layer), uint32_t(x), uint32_t(y));
   return {v.r, v.g, v.b, v.a};
+}
+bool pointFilter(const SamplerDesc& s) { return s.magFilter == Filter::Nearest && s.minFilter == Filter::Nearest; }
+// The RGBA8 path a profile takes for sampler s (Unorm8Path::Reactor resolved).
+DeviceProfile::Unorm8Path unorm8Path(const DeviceProfile& dev, const SamplerDesc& s) {
+  using U = DeviceProfile::Unorm8Path;
+  if (dev.unorm8Path != U::Reactor) return dev.unorm8Path;
+  return pointFilter(s) ? U::Fixed16 : U::FloatScaled;
+}
+bool scaledUnorm8(const Texture& t, const DeviceProfile& dev, const SamplerDesc& s) {
+  return t.format() == Format::RGBA8_UNORM && unorm8Path(dev, s) == DeviceProfile::Unorm8Path::FloatScaled;
 }
 template <int N>
 C4<F32<N>> loadTexel(const Texture& t, I32<N> level, I32<N> layer, I32<N> x, I32<N> y) {
@@ -193,9 +210,11 @@ C4<F32<N>> loadTexel(const Texture& t, I32<N> level, I32<N> layer, I32<N> x, I32
   return c;
 }
 
-// Filter kinds of one call: plain nearest, plain linear, or "nearest through the linear footprint"
-// (Mesa's mipmap_both path for magnified lanes: weight 1 where the linear weight exceeds 1/2, else 0).
-enum class LaneFilter { Nearest, Linear, NearestInLinear };
+// Filter kinds of one call: plain nearest, plain linear, "nearest through the linear footprint"
+// (Mesa's mipmap_both path for magnified lanes: weight 1 where the linear weight exceeds 1/2, else 0),
+// or the linear arithmetic with its half-texel offset and +1 step masked off (SwiftShader's mixed
+// filters on their nearest side: both taps are one texel, still blended).
+enum class LaneFilter { Nearest, Linear, NearestInLinear, LinearNoOffset };
 
 template <class F>
 F weight(F w, const DeviceProfile& dev, LaneFilter filter) {
@@ -205,18 +224,39 @@ F weight(F w, const DeviceProfile& dev, LaneFilter filter) {
   return lrint(w * scale) * (1.0f / scale);
 }
 
+// One level, one lane, SwiftShader's addressing (DeviceProfile::TexAddressing::Reactor).
+C4<float> sampleLevelReactor(const Texture& t, const DeviceProfile& dev, int32_t level, int32_t layer, float u, float v,
+                             LaneFilter filter, AddressMode au, AddressMode av, bool sc) {
+  const int32_t w = int32_t(t.levelWidth(uint32_t(level))), h = int32_t(t.levelHeight(uint32_t(level)));
+  const bool point = filter == LaneFilter::Nearest, offset = filter != LaneFilter::LinearNoOffset;
+  const reactor::Axis x = reactor::addressFloat(u, w, au, point, offset), y = reactor::addressFloat(v, h, av, point, offset);
+  if (point) return loadTexel(t, level, layer, x.i0, y.i0, sc);
+  const float a = weight(x.f, dev, filter), b = weight(y.f, dev, filter);
+  C4<float> t00 = loadTexel(t, level, layer, x.i0, y.i0, sc), t10 = loadTexel(t, level, layer, x.i1, y.i0, sc);
+  C4<float> t01 = loadTexel(t, level, layer, x.i0, y.i1, sc), t11 = loadTexel(t, level, layer, x.i1, y.i1, sc);
+  const bool fused = dev.filterLerpFma;
+  return lerp4(b, lerp4(a, t00, t10, fused), lerp4(a, t01, t11, fused), fused);
+}
+
 template <class F>
 C4<F> sampleLevelFloat(const Texture& t, const DeviceProfile& dev, typename LaneOf<F>::I level,
-                       typename LaneOf<F>::I layer, F u, F v, LaneFilter filter, AddressMode au, AddressMode av) {
+                       typename LaneOf<F>::I layer, F u, F v, LaneFilter filter, AddressMode au, AddressMode av,
+                       bool scaled = false) {
   using I = typename LaneOf<F>::I;
+  if constexpr (std::is_same_v<F, float>)
+    if (dev.texAddressing == DeviceProfile::TexAddressing::Reactor)
+      return sampleLevelReactor(t, dev, level, layer, u, v, filter, au, av, scaled);
   const I w = imax(I(int32_t(t.width())) >> level, I(1)), h = imax(I(int32_t(t.height())) >> level, I(1));
   const bool potW = isPot(t.width()), potH = isPot(t.height());
-  if (filter == LaneFilter::Nearest)
-    return loadTexel(t, level, layer, wrapNearest(u, w, potW, au), wrapNearest(v, h, potH, av));
+  auto load = [&](I x, I y) {
+    if constexpr (std::is_same_v<F, float>) return loadTexel(t, level, layer, x, y, scaled);
+    else return loadTexel(t, level, layer, x, y);  // lane blocks never run FloatScaled (perLane)
+  };
+  if (filter == LaneFilter::Nearest) return load(wrapNearest(u, w, potW, au), wrapNearest(v, h, potH, av));
   Linear1D<F> x = wrapLinear(u, w, potW, au), y = wrapLinear(v, h, potH, av);
   F a = weight(x.w, dev, filter), b = weight(y.w, dev, filter);
-  C4<F> t00 = loadTexel(t, level, layer, x.i0, y.i0), t10 = loadTexel(t, level, layer, x.i1, y.i0);
-  C4<F> t01 = loadTexel(t, level, layer, x.i0, y.i1), t11 = loadTexel(t, level, layer, x.i1, y.i1);
+  C4<F> t00 = load(x.i0, y.i0), t10 = load(x.i1, y.i0);
+  C4<F> t01 = load(x.i0, y.i1), t11 = load(x.i1, y.i1);
   const bool fused = dev.filterLerpFma;
   return lerp4(b, lerp4(a, t00, t10, fused), lerp4(a, t01, t11, fused), fused);
 }
@@ -278,20 +318,28 @@ namespace {
 
 struct LodInfo {
   int32_t l0, l1;
-  float f;      // mip fraction (linear mip), 0 at the clamped ends
+  float f;      // mip fraction (linear mip), 0 at the clamped ends (Gallivm)
   bool minify;  // lambda > 0
   uint32_t layer;
+  float lambda;  // the clamped LOD (Reactor's 16-bit path takes its mip weight from it)
 };
 
 // LOD selection as Mesa's lod_selector + linear/nearest mip level code: explicit lod + sampler
 // bias, then max/min lod clamps; linear: floor/fraction with both levels clamped to
 // [0, last] and the fraction zeroed where clamped; nearest: rint, clamped.
-LodInfo selectLod(const Texture& tex, const SamplerDesc& s, float layerCoord, float lod) {
+LodInfo selectLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float layerCoord, float lod) {
   LodInfo r{};
+  if (dev.mipSelection == DeviceProfile::MipSelection::Reactor) {
+    const reactor::Lod L = reactor::selectLod(tex, s, lod);
+    r.l0 = L.l0, r.l1 = L.l1, r.f = L.f, r.lambda = L.lod, r.minify = L.lod > 0.0f;
+    r.layer = uint32_t(clampi(int32_t(std::nearbyint(layerCoord)), 0, int32_t(tex.layers()) - 1));
+    return r;
+  }
   float lambda = s.lodBias != 0.0f ? lod + s.lodBias : lod;
   lambda = minSecondNonNan(lambda, s.maxLod);
   if (s.minLod > 0.0f) lambda = maxSecondNonNan(lambda, s.minLod);  // Mesa applies min_lod only when > 0
   r.minify = lambda > 0.0f;
+  r.lambda = lambda;
   const int32_t last = int32_t(tex.levelCount()) - 1;
   r.layer = uint32_t(clampi(int32_t(std::nearbyint(layerCoord)), 0, int32_t(tex.layers()) - 1));
   if (last == 0) return r;  // single level: no mip filtering at all
@@ -326,20 +374,31 @@ bool laneWantsLinear(const SamplerDesc& s, bool minify) {
 
 // Which path a sampler/texture pair takes: mixed mag/min filters (per-lane "both" path), lavapipe's
 // 8-bit fixed-point path (RGBA8, equal filters, no mirrored repeat), and whether mip levels lerp.
+// perLane: a strategy the 8-lane blocks do not implement (SwiftShader's), so every lane runs sampleOne.
 struct SamplerPaths {
-  bool mixed, fixed, mipLinear;
+  bool mixed, fixed, mipLinear, fixed16, perLane;
 };
 SamplerPaths samplerPaths(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev) {
   const bool mixed = s.minFilter != s.magFilter;
+  const bool rgba8 = tex.format() == Format::RGBA8_UNORM;
+  const bool reactorMip = dev.mipSelection == DeviceProfile::MipSelection::Reactor;
+  const DeviceProfile::Unorm8Path path = unorm8Path(dev, s);
+  const bool fixed16 = path == DeviceProfile::Unorm8Path::Fixed16 && rgba8;
   return {mixed,
-          dev.unorm8FixedPoint && tex.format() == Format::RGBA8_UNORM && (!mixed || s.lodPerQuad) &&
+          path == DeviceProfile::Unorm8Path::Fixed8 && rgba8 && (!mixed || s.lodPerQuad) &&
               s.addressU != AddressMode::MirroredRepeat && s.addressV != AddressMode::MirroredRepeat,
-          s.mipmapMode == MipmapMode::Linear && tex.levelCount() > 1};
+          s.mipmapMode == MipmapMode::Linear && (tex.levelCount() > 1 || reactorMip), fixed16,
+          fixed16 || reactorMip || dev.texAddressing == DeviceProfile::TexAddressing::Reactor ||
+              (rgba8 && path == DeviceProfile::Unorm8Path::FloatScaled)};
 }
 
 Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, const LodInfo& L,
                  VectorFlags vf) {
-  const auto [mixed, fixed, mipLinear] = samplerPaths(tex, s, dev);
+  const auto [mixed, fixed, mipLinear, fixed16, perLane] = samplerPaths(tex, s, dev);
+  if (fixed16) {
+    const reactor::Lod R{L.lambda, L.l0, L.l1, L.f};
+    return reactor::sampleUnorm16(tex, s, R, L.layer, u, v);
+  }
   if (fixed) {  // AoS: per-lane lerp8 with weight 0 is exact, so vector grouping is invisible
     const Filter filter = L.minify ? s.minFilter : s.magFilter;
     Bytes4 c0 = sampleLevelFixed(tex, uint32_t(L.l0), L.layer, u, v, filter, s.addressU, s.addressV);
@@ -352,7 +411,11 @@ Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
   int32_t l0 = L.l0, l1 = L.l1;
   float f = L.f;
   bool lerpLevels = mipLinear && vf.needLerp;
-  if (!mixed) {
+  if (dev.mipSelection == DeviceProfile::MipSelection::Reactor) {  // per lane, always blended
+    lerpLevels = mipLinear;
+    if (!mixed) lane = s.minFilter == Filter::Linear ? LaneFilter::Linear : LaneFilter::Nearest;
+    else lane = laneWantsLinear(s, L.minify) ? LaneFilter::Linear : LaneFilter::LinearNoOffset;
+  } else if (!mixed) {
     lane = s.minFilter == Filter::Linear ? LaneFilter::Linear : LaneFilter::Nearest;
   } else if (vf.needLinear) {  // combined path: linear footprint, nearest lanes by weight;
     // it lerps levels when any lane of the vector is minified (Mesa: need_lerp = any(lod_positive))
@@ -366,10 +429,15 @@ Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
     }
   }
   const int32_t layer = int32_t(L.layer);
-  C4<float> c = sampleLevelFloat<float>(tex, dev, l0, layer, u, v, lane, s.addressU, s.addressV);
+  const bool scaled = scaledUnorm8(tex, dev, s);
+  C4<float> c = sampleLevelFloat<float>(tex, dev, l0, layer, u, v, lane, s.addressU, s.addressV, scaled);
   if (lerpLevels) {
-    C4<float> c1 = sampleLevelFloat<float>(tex, dev, l1, layer, u, v, lane, s.addressU, s.addressV);
+    C4<float> c1 = sampleLevelFloat<float>(tex, dev, l1, layer, u, v, lane, s.addressU, s.addressV, scaled);
     c = lerp4(lodFraction(f, dev), c, c1, dev.filterLerpFma);
+  }
+  if (scaled) {
+    const float k = 1.0f / float(0xFF00);
+    return {c.r * k, c.g * k, c.b * k, c.a * k};
   }
   return {c.r, c.g, c.b, c.a};
 }
@@ -491,7 +559,7 @@ void sampleBlock(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
 }  // namespace
 
 Texel4 textureLod(const Texture& tex, const SamplerDesc& s, const DeviceProfile& dev, float u, float v, float layerCoord, float lod) {
-  LodInfo L = selectLod(tex, s, layerCoord, lod);
+  LodInfo L = selectLod(tex, s, dev, layerCoord, lod);
   VectorFlags vf{L.f > 0.0f, laneWantsLinear(s, L.minify), L.minify};  // a vector of one lane
   return sampleOne(tex, s, dev, u, v, L, vf);
 }
@@ -510,7 +578,7 @@ void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfi
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 8192), [&](const tbb::blocked_range<size_t>& r) {
       DenormalScope mode(flush);
       for (size_t i = r.begin(); i != r.end(); ++i) {
-        LodInfo L = selectLod(tex, s, q[4 * i + 2], q[4 * i + 3]);
+        LodInfo L = selectLod(tex, s, dev, q[4 * i + 2], q[4 * i + 3]);
         uint8_t bits = uint8_t((L.f > 0.0f ? 1 : 0) | (laneWantsLinear(s, L.minify) ? 2 : 0) | (L.minify ? 4 : 0));
         if (bits) std::atomic_ref<uint8_t>(flags[vectorOf[i]]).fetch_or(bits, std::memory_order_relaxed);
       }
@@ -521,7 +589,7 @@ void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfi
     uint8_t b = flags[vectorOf[i]];
     return VectorFlags{(b & 1) != 0, (b & 2) != 0, (b & 4) != 0};
   };
-  const auto [mixed, fixed, mipLinear] = samplerPaths(tex, s, dev);
+  const auto [mixed, fixed, mipLinear, fixed16, perLane] = samplerPaths(tex, s, dev);
   const size_t blocks = (n + kLanes - 1) / kLanes;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks, 256), [&](const tbb::blocked_range<size_t>& r) {
     DenormalScope mode(flush);
@@ -532,15 +600,15 @@ void textureLodBatch(const Texture& tex, const SamplerDesc& s, const DeviceProfi
       bool lerpLane[kLanes] = {};
       for (int k = 0; k < count; ++k) {
         const size_t i = i0 + size_t(k);
-        lods[k] = selectLod(tex, s, q[4 * i + 2], q[4 * i + 3]);
-        if (mixed || fixed) {  // per-lane paths
+        lods[k] = selectLod(tex, s, dev, q[4 * i + 2], q[4 * i + 3]);
+        if (mixed || fixed || perLane) {  // per-lane paths
           Texel4 t = sampleOne(tex, s, dev, q[4 * i], q[4 * i + 1], lods[k], vectorFlags(i, lods[k]));
           std::memcpy(out + 4 * i, &t, 16);
         } else {
           lerpLane[k] = mipLinear && vectorFlags(i, lods[k]).needLerp;
         }
       }
-      if (!mixed && !fixed) sampleBlock(tex, s, dev, q + 4 * i0, lods, lerpLane, out + 4 * i0, count);
+      if (!mixed && !fixed && !perLane) sampleBlock(tex, s, dev, q + 4 * i0, lods, lerpLane, out + 4 * i0, count);
     }
   });
 }
@@ -550,13 +618,13 @@ void textureLodVector(const Texture& tex, const SamplerDesc& s, const DeviceProf
   LodInfo lods[16];
   VectorFlags vf;
   for (int k = 0; k < n; ++k) {
-    lods[k] = selectLod(tex, s, q[4 * k + 2], q[4 * k + 3]);
+    lods[k] = selectLod(tex, s, dev, q[4 * k + 2], q[4 * k + 3]);
     vf.needLerp |= lods[k].f > 0.0f;
     vf.needLinear |= laneWantsLinear(s, lods[k].minify);
     vf.anyMinify |= lods[k].minify;
   }
-  const auto [mixed, fixed, mipLinear] = samplerPaths(tex, s, dev);
-  if (mixed || fixed) {
+  const auto [mixed, fixed, mipLinear, fixed16, perLane] = samplerPaths(tex, s, dev);
+  if (mixed || fixed || perLane) {
     for (int k = 0; k < n; ++k) {
       Texel4 t = sampleOne(tex, s, dev, q[4 * k], q[4 * k + 1], lods[k], vf);
       std::memcpy(out + 4 * k, &t, 16);
