@@ -4,6 +4,7 @@
 
 #include <climits>
 #include <cmath>
+#include <algorithm>
 #include <cstring>
 
 namespace emu::reactor {
@@ -37,11 +38,15 @@ int32_t truncInt(float x) {
 
 Lod selectLod(const Texture& t, const SamplerDesc& s, float lod) {
   auto clampLod = [](float x) { return x < 0.0f ? 0.0f : (x > kMaxTextureLod ? kMaxTextureLod : x); };
-  const float minLod = clampLod(s.minLod), maxLod = clampLod(s.maxLod);
-  float l = lod + s.lodBias;
+  const int32_t last = int32_t(t.levelCount()) - 1;
+  float minLod = clampLod(s.minLod), maxLod = clampLod(s.maxLod);
+  // A one-level view whose filtering does not depend on the LOD (mag = min filter) is sampled at LOD 0:
+  // the sampler state's LOD range becomes [0, 0] and the LOD computation is skipped (measured: a
+  // 16-bit mip blend with weight 0 on one-level RGBA8 views, verify texture --seeds 30).
+  if (last == 0 && s.magFilter == s.minFilter) minLod = maxLod = 0.0f;
+  float l = minLod == maxLod ? minLod : lod + s.lodBias;
   l = rmax(l, minLod);
   l = rmin(l, maxLod);
-  const int32_t last = int32_t(t.levelCount()) - 1;
   Lod r{l, 0, 0, 0.0f};
   if (s.mipmapMode == MipmapMode::Nearest) {
     r.l0 = r.l1 = mini(roundInt(l), last);
