@@ -19,7 +19,7 @@ const DeviceProfile& lavapipeProfile() {
       // (triangles crossing every clip plane)
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
        DeviceProfile::Raster::Clip::DrawModule, /*clipFromNearer=*/true, /*clipViewportFma=*/false,
-       /*verified=*/true},
+       /*fansClippedPolygons=*/true, /*verified=*/true},
       DeviceProfile::ImplicitLod::FastLog2PerQuad, /*implicitLodVerified=*/true,  // verify texture --implicit-lod
       /*implicitNearestShortcut=*/true,
       /*loopIterationLimit=*/65535};  // gallivm lp_bld_limits.h; the glints lighting table's partial sums past it
@@ -36,7 +36,7 @@ const DeviceProfile& nvidiaProfile() {
       DeviceProfile::MaskedFragmentLanes::Skip, DenormMode::Preserve, DenormMode::Preserve,
       {/*subPixelBits=*/8, /*viewportFma=*/true, /*interpFma=*/true, /*cwSwapsLast=*/true, /*fineDerivatives=*/true,
        DeviceProfile::Raster::Clip::GuardBand, /*clipFromNearer=*/false, /*clipViewportFma=*/true,
-       /*verified=*/false},
+       /*fansClippedPolygons=*/false, /*verified=*/false},
       DeviceProfile::ImplicitLod::Exact, /*implicitLodVerified=*/false, /*implicitNearestShortcut=*/false,
       /*loopIterationLimit=*/0};
   return p;
@@ -64,6 +64,9 @@ const DeviceProfile& swiftshaderProfile() {
     q.unorm8Path = DeviceProfile::Unorm8Path::Reactor;
     q.computeVectorLanes = 4, q.fragmentVectorW = 2, q.fragmentVectorH = 2;
     q.raster.verified = false, q.implicitLodVerified = false;
+    q.raster.fansClippedPolygons = false;  // the full-screen triangle's clipped polygon is one primitive
+    q.implicitLod = DeviceProfile::ImplicitLod::ReactorLog2Sqrt;
+    q.implicitNearestShortcut = false;  // a gallivm LOD-selector shortcut
     q.loopIterationLimit = 0;  // SwiftShader's Reactor JIT has no loop limiter
     return q;
   }();

@@ -59,13 +59,20 @@ struct DeviceProfile {
     enum class Clip { GuardBand, DrawModule } clip;
     bool clipFromNearer;   // a new vertex is interpolated from the endpoint nearer the plane (else from the outside one)
     bool clipViewportFma;  // window position of a new vertex with fused mul + add (lavapipe: C code, separate)
+    // A clipped polygon is rasterized as the triangles of a fan from its first vertex, each its own
+    // primitive for fragment vectors and quads (lavapipe's draw module); else as one primitive
+    // (SwiftShader's rasterizer takes the clipped polygon whole; a guard-band GPU never cuts x/y).
+    bool fansClippedPolygons = true;
     bool verified;
   } raster;
   // Implicit LOD of texture() in fragment shaders (emu::implicitLod). FastLog2PerQuad (lavapipe):
   // derivatives per 2x2 quad (top-right - top-left, bottom-left - top-left), rho^2 = max over x/y of
   // (ds*W)^2 + (dt*H)^2, lod = 0.5 * fastlog2(rho^2) with fastlog2(x) = (exponent - 1) + mantissa in [1, 2).
   // Exact: 0.5 * log2(rho^2), per pixel with the stage's derivatives (unverified stand-in).
-  enum class ImplicitLod { FastLog2PerQuad, Exact } implicitLod;
+  // ReactorLog2Sqrt (SwiftShader, SamplerCore::computeLod + log2sqrt): the same per-quad rho^2, then
+  // lod = (float(bits(rho^2 * rho^2)) - 0x3F800000) * 2^-25, the bit pattern of rho^4 read as an
+  // integer (rounded to float) for 4 log2(rho) (piecewise linear in the mantissa).
+  enum class ImplicitLod { FastLog2PerQuad, Exact, ReactorLog2Sqrt } implicitLod;
   bool implicitLodVerified;
   // Integer level shortcut of texture() (gallivm's LOD selector, lp_build_ilog2_sqrt): with mip filter
   // nearest and no post-log2 adjustment (sampler bias 0, minLod <= 0, maxLod >= 15) the level is

@@ -659,6 +659,12 @@ float implicitLod(const Texture& tex, const SamplerDesc& sd, const DeviceProfile
     return level != 0 ? float(level) : rho2 > 1.0f ? 0.25f : 0.0f;
   }
   if (dev.implicitLod == DeviceProfile::ImplicitLod::Exact) return 0.5f * std::log2(rho2);
+  if (dev.implicitLod == DeviceProfile::ImplicitLod::ReactorLog2Sqrt) {
+    const float rho4 = rho2 * rho2;
+    int32_t ib;
+    std::memcpy(&ib, &rho4, 4);
+    return (float(ib) - float(0x3F800000)) * 0x1p-25f;
+  }
   // gallivm's fast log2: (biased exponent - 127 - 1) + mantissa with the exponent bits set to 1.0.
   const int32_t e = int32_t((bits >> 23) & 0xffu) - 127 - 1;
   const uint32_t mbits = (bits & 0x007fffffu) | 0x3f800000u;

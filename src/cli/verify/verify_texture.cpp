@@ -229,7 +229,8 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
   // The SIMD vector each work item runs in on the device: compute item i = invocation i; fragment item
   // i = pixel (i % 1024, i / 1024) of the kernel's target. Lavapipe clips the full-screen triangle to
   // the viewport and fans the rectangle into two triangles along the diagonal (0,0)-(W,H) (measured
-  // with a NaN probe); a block crossing it is shaded once per triangle (emu::fragmentLanes). Masked
+  // with a NaN probe; DeviceProfile::Raster::fansClippedPolygons), a block crossing it is shaded once per
+  // triangle (emu::fragmentLanes); SwiftShader rasterizes the clipped polygon as one primitive. Masked
   // lanes load zeros (explicit LOD 0; implicit: their quad's LOD in that run, see implicitLods): the
   // emulator runs them as the extra lanes past n and discards their results.
   const uint32_t rowLen = 1024, rows = uint32_t((n + rowLen - 1) / rowLen);
@@ -237,7 +238,7 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
   for (size_t i = 0; i < n; ++i) {
     computeVectors[i] = uint32_t(i / uint32_t(profile.computeVectorLanes));
     const double x = double(i % rowLen) + 0.5, y = double(i / rowLen) + 0.5;
-    primitiveOf[i] = x * rows > y * rowLen ? 1u : 0u;
+    primitiveOf[i] = profile.raster.fansClippedPolygons && x * rows > y * rowLen ? 1u : 0u;
   }
   const std::vector<emu::FragmentLane> fragLanes = emu::fragmentLanes(profile, rowLen, rows, primitiveOf.data(), 2);
   std::vector<uint32_t> fragVectors(fragLanes.size());
