@@ -128,6 +128,14 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
     else if (v == "floatscaled") p.unorm8Path = U::FloatScaled;
     else if (v == "reactor") p.unorm8Path = U::Reactor;
     else throw std::invalid_argument("profile field unorm8Path: expected float, fixed8, fixed16, floatscaled or reactor, got '" + std::string(v) + "'");
+  } else if (key == "implicitLod") {
+    using L = DeviceProfile::ImplicitLod;
+    if (v == "fastlog2") p.implicitLod = L::FastLog2PerQuad;
+    else if (v == "exact") p.implicitLod = L::Exact;
+    else if (v == "reactor") p.implicitLod = L::ReactorLog2Sqrt;
+    else throw std::invalid_argument("profile field implicitLod: expected fastlog2, exact or reactor, got '" + std::string(v) + "'");
+  } else if (key == "fansClippedPolygons") {
+    p.raster.fansClippedPolygons = parseBool(key, v);
   } else if (key == "texAddressing") {
     p.texAddressing = parseStrategy(key, v) ? DeviceProfile::TexAddressing::Reactor : DeviceProfile::TexAddressing::Gallivm;
   } else if (key == "mipSelection") {
@@ -144,7 +152,8 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
     throw std::invalid_argument("unknown profile field '" + std::string(key) +
                                 "' (known: maskedFragmentLanes, implicitNearestShortcut, computeVectorLanes, "
                                 "fragmentVectorW, fragmentVectorH, filterWeightFracBits, lodFractionBits, "
-                                "unorm8FixedPoint, unorm8Path, texAddressing, mipSelection, denormCompute, denormFragment, "
+                                "unorm8FixedPoint, unorm8Path, texAddressing, mipSelection, implicitLod, fansClippedPolygons, "
+                                "denormCompute, denormFragment, "
                                 "loopIterationLimit, filterLerpFma)");
   }
   p.verified = false;

@@ -98,10 +98,11 @@ struct DeviceProfile {
   TexAddressing texAddressing = TexAddressing::Gallivm;
   // LOD to levels. Gallivm: min/max clamps (minLod only when > 0), linear mip fraction zeroed where a
   // level index is clamped, levels lerp only where some lane of the SIMD vector needs it (vector
-  // decisions above). Reactor: lod clamped to [minLod, maxLod] (both first clamped to [0, 12]);
+  // decisions above). Reactor: lod clamped to [minLod, maxLod] (both first clamped to [0, 13]);
   // linear mip reads trunc(lod) and trunc(lod) + 1 (the view repeats its last level) and always blends
   // with frac(lod), even at fraction 0 (an inf texel then gives NaN); nearest mip rint(lod); the
-  // min/mag choice of mixed filters from the clamped lod; every lane decides alone.
+  // min/mag choice of mixed filters from the clamped lod; every lane decides alone; a one-level view with
+  // equal mag/min filters samples at LOD 0.
   enum class MipSelection { Gallivm, Reactor };
   MipSelection mipSelection = MipSelection::Gallivm;
   DenormMode denorm(Stage s) const { return s == Stage::Compute ? denormCompute : denormFragment; }
@@ -118,6 +119,7 @@ const DeviceProfile& profileByName(std::string_view name);
 /// "implicitNearestShortcut" = true|false, "computeVectorLanes", "fragmentVectorW", "fragmentVectorH" =
 /// integer, "filterWeightFracBits", "lodFractionBits" = integer, "unorm8Path" = float|fixed8|fixed16|floatscaled|reactor
 /// ("unorm8FixedPoint" = true|false: fixed8|float), "texAddressing", "mipSelection" = gallivm|reactor,
+/// "implicitLod" = fastlog2|exact|reactor, "fansClippedPolygons" = true|false,
 /// "denormCompute", "denormFragment" = preserve|flush, "loopIterationLimit" = integer), to measure what the profile's choice is worth.
 /// The profile is then marked unverified. Throws std::invalid_argument naming the key or the value.
 void setProfileField(DeviceProfile& p, std::string_view key, std::string_view value);

@@ -23,7 +23,7 @@ int32_t truncInt(float x);
 /// first clamped to [0, kMaxTextureLod] by vk::Sampler), then the level(s): linear mip trunc(lod) and
 /// trunc(lod) + 1 with fraction frac(lod) (always blended), nearest rint(lod); levels past the view's
 /// last repeat the last one (the descriptor replicates it).
-constexpr float kMaxTextureLod = 12.0f;  // sw::MAX_TEXTURE_LOD = MIPMAP_LEVELS - 2
+constexpr float kMaxTextureLod = 13.0f;  // sw::MAX_TEXTURE_LOD = MIPMAP_LEVELS - 2, MIPMAP_LEVELS 15 (measured: implicit LODs past 12)
 struct Lod {
   float lod;       // clamped
   int32_t l0, l1;  // levels read (l1 only for linear mip)

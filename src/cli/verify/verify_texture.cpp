@@ -370,6 +370,14 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
                   << q[4 * i + 1] << ", " << q[4 * i + 2] << ", " << q[4 * i + 3] << ") emu=(" << emuOut[4 * i] << ", "
                   << emuOut[4 * i + 1] << ") gpu=(" << gpu[4 * i] << ", " << gpu[4 * i + 1] << ")"
                   << std::setprecision(6);
+              if (opts.implicitLod) {
+                size_t x = i % 1024 & ~size_t(1), y = i / 1024 & ~size_t(1);
+                size_t p[4] = {y * 1024 + x, y * 1024 + x + 1, (y + 1) * 1024 + x, (y + 1) * 1024 + x + 1};
+                out << std::setprecision(9) << " quad:";
+                for (int c = 0; c < 4; ++c) out << " (" << q[4 * p[c]] << "," << q[4 * p[c] + 1] << ")";
+                for (size_t k = 0; k < fragLanes.size(); ++k) if (fragLanes[k].pixel == i) out << " lod " << qFrag[4 * k + 3];
+                out << std::setprecision(6);
+              }
             }
             out << "\n";
           }
