@@ -163,6 +163,56 @@ TEST(Sampler, TrilinearBlendsLevelsWithFma) {
   EXPECT_EQ(emu::textureLod(t, s, lp, 0.5f, 0.5f, 0, 0.25f).r, 2.0f);
 }
 
+TEST(Sampler, SwiftShaderAlwaysBlendsLevelsAndAnInfTexelThenGivesNaN) {
+  // MipSelection::Reactor: linear mip blends (cc - c) frac + c even at fraction 0, so an inf texel of level 0
+  // gives NaN at lod 0 (inf - inf); lavapipe does not lerp at fraction 0 and returns inf (verify texture,
+  // the one-level-of-inf textures).
+  emu::Texture t(emu::Format::R32F, 2, 2, 1, {floats({INFINITY, INFINITY, INFINITY, INFINITY}), floats({3})});
+  emu::SamplerDesc s;
+  s.magFilter = s.minFilter = emu::Filter::Nearest;  // no bilinear arithmetic (inf - inf) inside the level
+  EXPECT_EQ(emu::textureLod(t, s, emu::lavapipeProfile(), 0.5f, 0.5f, 0, 0.0f).r, INFINITY);
+  EXPECT_TRUE(std::isnan(emu::textureLod(t, s, emu::swiftshaderProfile(), 0.5f, 0.5f, 0, 0.0f).r));
+  s.magFilter = s.minFilter = emu::Filter::Linear;
+  // Both clamp lod above the last level; SwiftShader's clamp is 13 (its sampler LOD limit), lavapipe's the level.
+  emu::Texture f(emu::Format::R32F, 2, 2, 1, {floats({1, 1, 1, 1}), floats({3})});
+  EXPECT_EQ(emu::textureLod(f, s, emu::swiftshaderProfile(), 0.5f, 0.5f, 0, 0.25f).r, 1.5f);
+  EXPECT_EQ(emu::textureLod(f, s, emu::swiftshaderProfile(), 0.5f, 0.5f, 0, 20.0f).r, 3.0f);
+}
+
+TEST(Sampler, SwiftShaderRgba8PointFilterIs16BitFixedPoint) {
+  // Unorm8Path::Reactor, FILTER_POINT: u in 0.16 fixed point, texel index (u16 * W) >> 16. v = 1/7 on a
+  // 1x7 texture is row 1 in float (1/7 * 7 = 1) but row 0 in 0.16 fixed point (9362 * 7 >> 16 = 0), the
+  // case verify texture found; and the mip blend of a one-texel chain loses one 16-bit unit: 255 << 8 = 65280,
+  // * 0x7FFF >> 16 + * 0x8000 >> 16 = 32639 + 32640 = 65279 -> 65279 / 65280.
+  std::vector<uint8_t> rows(7 * 4);
+  for (int y = 0; y < 7; ++y) rows[size_t(4 * y)] = uint8_t(10 * y);
+  emu::Texture t(emu::Format::RGBA8_UNORM, 1, 7, 1, {rows});
+  emu::SamplerDesc s;
+  s.magFilter = s.minFilter = emu::Filter::Nearest, s.mipmapMode = emu::MipmapMode::Nearest;
+  const float v = 0.142857149f;
+  EXPECT_EQ(emu::textureLod(t, s, emu::lavapipeProfile(), 0.5f, v, 0, 0).r, emu::unorm8ToFloat(10));
+  EXPECT_EQ(emu::textureLod(t, s, emu::swiftshaderProfile(), 0.5f, v, 0, 0).r, 0.0f);
+  std::vector<uint8_t> white = {255, 255, 255, 255}, white2 = {255, 255, 255, 255, 255, 255, 255, 255};
+  emu::Texture chain(emu::Format::RGBA8_UNORM, 2, 1, 1, {white2, white});
+  s.mipmapMode = emu::MipmapMode::Linear;
+  EXPECT_EQ(emu::textureLod(chain, s, emu::swiftshaderProfile(), 0.25f, 0.5f, 0, 0.5f).r, 65279.0f * (1.0f / 65280.0f));
+  EXPECT_EQ(emu::textureLod(chain, s, emu::lavapipeProfile(), 0.25f, 0.5f, 0, 0.5f).r, 1.0f);
+}
+
+TEST(Sampler, SwiftShaderImplicitLodReadsTheBitsOfRho4) {
+  // ImplicitLod::ReactorLog2Sqrt: exact at powers of two (rho^2 = 2^m: lod = m / 2), piecewise linear between,
+  // so it differs from log2 inside an octave and from lavapipe's fast log2 (which reads rho^2's mantissa).
+  emu::Texture t(emu::Format::R32F, 64, 64, 1, {std::vector<uint8_t>(64 * 64 * 4)});
+  emu::SamplerDesc s;
+  const float su[4] = {0, 4.0f / 64, 0, 4.0f / 64}, tv[4] = {0, 0, 4.0f / 64, 4.0f / 64};  // rho = 4
+  EXPECT_EQ(emu::implicitLod(t, s, emu::swiftshaderProfile(), su, tv), 2.0f);
+  const float su3[4] = {0, 3.0f / 64, 0, 3.0f / 64}, tv3[4] = {0, 0, 3.0f / 64, 3.0f / 64};  // rho = 3, rho^4 = 81
+  const float ss = emu::implicitLod(t, s, emu::swiftshaderProfile(), su3, tv3);
+  EXPECT_EQ(ss, (float(0x42A20000) - float(0x3F800000)) * 0x1p-25f);  // bits of 81.0f
+  EXPECT_NE(ss, emu::implicitLod(t, s, emu::lavapipeProfile(), su3, tv3));
+  EXPECT_NEAR(ss, std::log2(3.0f), 0.1f);
+}
+
 TEST(DeviceProfile, LookupAndUnknownNames) {
   EXPECT_TRUE(emu::profileByName("lavapipe").verified);
   EXPECT_FALSE(emu::profileByName("nvidia").verified);
@@ -173,6 +223,8 @@ TEST(DeviceProfile, LookupAndUnknownNames) {
   EXPECT_EQ(emu::profileByName("swiftshader").loopIterationLimit, 0u);
   EXPECT_EQ(emu::swiftshaderProfile().denorm(emu::Stage::Compute), emu::DenormMode::Flush);  // verify math, measured
   EXPECT_FALSE(emu::swiftshaderProfile().filterLerpFma);  // verify texture, measured
+  EXPECT_EQ(emu::swiftshaderProfile().texAddressing, emu::DeviceProfile::TexAddressing::Reactor);
+  EXPECT_EQ(emu::lavapipeProfile().mipSelection, emu::DeviceProfile::MipSelection::Gallivm);
   EXPECT_TRUE(emu::lavapipeProfile().filterLerpFma);
   EXPECT_THROW(emu::profileByName("voodoo2"), std::invalid_argument);
   EXPECT_EQ(emu::lavapipeProfile().denorm(emu::Stage::Fragment), emu::DenormMode::Flush);
