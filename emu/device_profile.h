@@ -14,7 +14,7 @@ struct DeviceProfile {
   std::string name;
   bool verified;             // every field below measured bit-exact on the device
   std::string provenance;    // where the values come from
-  // Texture unit, float path (every lerp is one fma(w, b - a, a) on both profiles).
+  // Texture unit, float path (its lerp form: filterLerpFma below).
   int filterWeightFracBits;  // 0: exact float weights (x - floor(x)); n: weights rounded to n fraction bits
   int lodFractionBits;       // 0: exact lod fraction
   // Texture unit, 8-bit path. Fixed8 (lavapipe): RGBA8 filtered in 8.8 fixed point when both wrap
