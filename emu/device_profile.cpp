@@ -65,6 +65,8 @@ const DeviceProfile& swiftshaderProfile() {
     q.computeVectorLanes = 4, q.fragmentVectorW = 2, q.fragmentVectorH = 2;
     q.raster.verified = false, q.implicitLodVerified = false;
     q.raster.fansClippedPolygons = false;  // the full-screen triangle's clipped polygon is one primitive
+    q.raster.setup = DeviceProfile::Raster::Setup::Reactor;
+    q.raster.subPixelBits = 4;  // limits.subPixelPrecisionBits (vulkaninfo): Chromium's legacy-precision build
     q.implicitLod = DeviceProfile::ImplicitLod::ReactorLog2Sqrt;
     q.implicitNearestShortcut = false;  // a gallivm LOD-selector shortcut
     q.loopIterationLimit = 0;  // SwiftShader's Reactor JIT has no loop limiter
@@ -134,6 +136,14 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
     else if (v == "exact") p.implicitLod = L::Exact;
     else if (v == "reactor") p.implicitLod = L::ReactorLog2Sqrt;
     else throw std::invalid_argument("profile field implicitLod: expected fastlog2, exact or reactor, got '" + std::string(v) + "'");
+  } else if (key == "rasterSetup") {
+    p.raster.setup = parseStrategy(key, v) ? DeviceProfile::Raster::Setup::Reactor : DeviceProfile::Raster::Setup::Gallivm;
+  } else if (key == "perspectiveRcp") {
+    if (v == "division") p.raster.perspectiveRcp = DeviceProfile::Raster::PerspectiveRcp::Division;
+    else if (v == "rcpnewton") p.raster.perspectiveRcp = DeviceProfile::Raster::PerspectiveRcp::RcpNewton;
+    else throw std::invalid_argument("profile field perspectiveRcp: expected division or rcpnewton, got '" + std::string(v) + "'");
+  } else if (key == "subPixelBits") {
+    p.raster.subPixelBits = parseInt(key, v, 1, 16);
   } else if (key == "fansClippedPolygons") {
     p.raster.fansClippedPolygons = parseBool(key, v);
   } else if (key == "texAddressing") {
@@ -153,6 +163,7 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
                                 "' (known: maskedFragmentLanes, implicitNearestShortcut, computeVectorLanes, "
                                 "fragmentVectorW, fragmentVectorH, filterWeightFracBits, lodFractionBits, "
                                 "unorm8FixedPoint, unorm8Path, texAddressing, mipSelection, implicitLod, fansClippedPolygons, "
+                                "rasterSetup, perspectiveRcp, subPixelBits, "
                                 "denormCompute, denormFragment, "
                                 "loopIterationLimit, filterLerpFma)");
   }

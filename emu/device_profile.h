@@ -64,6 +64,18 @@ struct DeviceProfile {
     // (SwiftShader's rasterizer takes the clipped polygon whole; a guard-band GPU never cuts x/y).
     bool fansClippedPolygons = true;
     bool verified;
+    // Triangle setup and interpolation. Gallivm (llvmpipe): see emu/raster.h. Reactor (SwiftShader's
+    // VertexRoutine, SetupRoutine, QuadRasterizer and PixelRoutine): X = rint(X0xF + (x_c (1/w)) WxF)
+    // in subPixelBits fixed point (X0xF = X0 2^b - 2^(b-1), WxF = W 2^b); the plane equations relative to
+    // vertex 0 after rotating the minimum clip y, then the maximum clip w, first, from
+    // M = [rhw0-scaled barycentric rows] of x_i = (w_i 2^-b) X_i, a = x1 y2 - x2 y1 (one division);
+    // per pixel D = C + y' B per row, v = D + x' A (x', y' relative to vertex 0), perspective
+    // attributes times the reciprocal of the interpolated 1/w (perspectiveRcp), all separate mul/add.
+    enum class Setup { Gallivm, Reactor } setup = Setup::Gallivm;
+    // Reactor's perspective reciprocal: Division (1 / w) or RcpNewton (rcpps scaled to be exact at powers
+    // of two, then one Newton step (r + r) - (w r) r: the host CPU's rcpps table, which the emulator
+    // reads on the same machine).
+    enum class PerspectiveRcp { Division, RcpNewton } perspectiveRcp = PerspectiveRcp::Division;
   } raster;
   // Implicit LOD of texture() in fragment shaders (emu::implicitLod). FastLog2PerQuad (lavapipe):
   // derivatives per 2x2 quad (top-right - top-left, bottom-left - top-left), rho^2 = max over x/y of

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <tuple>
 #include <type_traits>
 
 #include <immintrin.h>
@@ -89,8 +90,21 @@ struct TriSetup {
   int x0, y0, x1, y1;  // pixel bounding box, inclusive, clipped to the framebuffer
   bool front;
   uint32_t triangle;
+  // Gallivm: a = fma(dady, py, fma(dadx, px, a0)) at pixel centres. Reactor: a0, dadx, dady are C, A, B
+  // of SwiftShader's planes relative to vertex 0, evaluated as (C + y' B) + x' A with x' = px + xq[px & 1].
+  bool reactor = false;
+  float xq[2], yq[2];
   Plane3 z, w;
   Plane3 v[kMaxVaryings];
+};
+
+// A vertex as SwiftShader's vertex stage leaves it (VertexRoutine): clip y and w (setup sorts on them),
+// projected X, Y in fixed point, z / w, 1 / w, and the raw varyings.
+struct RVertex {
+  float cy, cw;
+  int32_t X, Y;
+  float z, rhw;
+  float v[kMaxVaryings];
 };
 
 float madd(bool fused, float a, float b, float c) { return fused ? std::fma(a, b, c) : a * b + c; }
@@ -103,6 +117,34 @@ WinVertex toWindow(bool fused, const ClipVertex& cv, int nv, float sx, float tx,
   w.z = madd(fused, cv.c[2] * w.oow, 1.0f, 0.0f);  // depth range [0, 1]
   for (int k = 0; k < nv; ++k) w.v[k] = cv.v[k] * w.oow;
   return w;
+}
+
+inline float rmin(float a, float b) { return a < b ? a : b; }  // minps: NaN in a gives b
+inline float rmax(float a, float b) { return a > b ? a : b; }
+
+int32_t roundIntRne(float x) {  // cvtps2dq: round to nearest even, INT_MIN out of range
+  if (!(x > -2147483904.0f && x < 2147483648.0f)) return INT_MIN;
+  return int32_t(std::nearbyint(x));
+}
+
+// SwiftShader's projection: w = 0 becomes +-1 (the bits of w OR those of 1.0), rhw = 1 / w, then
+// X = rint(X0xF + (x rhw) WxF) with X0xF = X0 2^b - 2^(b-1), WxF = W 2^b (Renderer's DrawData).
+RVertex toReactor(const ClipVertex& cv, int nv, int bits, float W, float X0, float H, float Y0) {
+  const float F = float(1 << bits);
+  const float WxF = W * F, HxF = H * F, X0xF = X0 * F - F / 2, Y0xF = Y0 * F - F / 2;
+  uint32_t wb;
+  std::memcpy(&wb, &cv.c[3], 4);
+  if (cv.c[3] == 0.0f) wb |= 0x3f800000u;
+  float w;
+  std::memcpy(&w, &wb, 4);
+  RVertex r;
+  r.cy = cv.c[1], r.cw = cv.c[3];
+  r.rhw = 1.0f / w;
+  r.X = roundIntRne(X0xF + (cv.c[0] * r.rhw) * WxF);
+  r.Y = roundIntRne(Y0xF + (cv.c[1] * r.rhw) * HxF);
+  r.z = cv.c[2] * r.rhw;
+  for (int k = 0; k < nv; ++k) r.v[k] = cv.v[k];
+  return r;
 }
 
 // Clip planes as dot products with the clip-space position, in the order a clipper visits them:
@@ -189,26 +231,19 @@ int clipPolygon(const DeviceProfile::Raster& r, ClipVertex* poly, unsigned mask,
   return n;
 }
 
-bool setupTriangle(const DeviceProfile& dev, const Framebuffer& fb, const WinVertex* in[3], int nv, bool cullBack,
-                   uint32_t triangle, TriSetup& t) {
-  const float scale = float(1 << dev.raster.subPixelBits);
-  int64_t X[3], Y[3];
-  for (int i = 0; i < 3; ++i) {
-    const float fx = (in[i]->x - 0.5f) * scale, fy = (in[i]->y - 0.5f) * scale;
-    if (!(std::fabs(fx) < 1.0e9f && std::fabs(fy) < 1.0e9f)) return false;  // outside the fixed-point range
-    X[i] = int64_t(std::nearbyint(fx));
-    Y[i] = int64_t(std::nearbyint(fy));
-  }
+// Coverage part of setup from snapped positions: orientation, culling, edge order, top-left flags and
+// the pixel box; order[] is the vertex order the edges use (counter-clockwise).
+bool setupCoverage(const DeviceProfile& dev, const Framebuffer& fb, const int64_t X[3], const int64_t Y[3],
+                   bool cullBack, uint32_t triangle, TriSetup& t, int order[3]) {
   const int64_t area = (X[0] - X[1]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[0] - Y[1]);
   if (area == 0) return false;
   t.front = area > 0;  // counter-clockwise in Vulkan's framebuffer coordinates
   if (cullBack && !t.front) return false;
-  int order[3] = {0, 1, 2};
+  order[0] = 0, order[1] = 1, order[2] = 2;
   if (area < 0) {
     if (dev.raster.cwSwapsLast) order[1] = 2, order[2] = 1;
     else order[0] = 1, order[1] = 0;
   }
-  const WinVertex* v[3] = {in[order[0]], in[order[1]], in[order[2]]};
   for (int i = 0; i < 3; ++i) t.X[i] = X[order[i]], t.Y[i] = Y[order[i]];
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
@@ -225,6 +260,22 @@ bool setupTriangle(const DeviceProfile& dev, const Framebuffer& fb, const WinVer
   t.y1 = int(std::min<int64_t>(floorDiv(maxY) + 1, int64_t(fb.height) - 1));
   if (t.x0 > t.x1 || t.y0 > t.y1) return false;
   t.triangle = triangle;
+  return true;
+}
+
+bool setupTriangle(const DeviceProfile& dev, const Framebuffer& fb, const WinVertex* in[3], int nv, bool cullBack,
+                   uint32_t triangle, TriSetup& t) {
+  const float scale = float(1 << dev.raster.subPixelBits);
+  int64_t X[3], Y[3];
+  for (int i = 0; i < 3; ++i) {
+    const float fx = (in[i]->x - 0.5f) * scale, fy = (in[i]->y - 0.5f) * scale;
+    if (!(std::fabs(fx) < 1.0e9f && std::fabs(fy) < 1.0e9f)) return false;  // outside the fixed-point range
+    X[i] = int64_t(std::nearbyint(fx));
+    Y[i] = int64_t(std::nearbyint(fy));
+  }
+  int order[3];
+  if (!setupCoverage(dev, fb, X, Y, cullBack, triangle, t, order)) return false;
+  const WinVertex* v[3] = {in[order[0]], in[order[1]], in[order[2]]};
   // Plane equations from the float window positions (Mesa lp_state_setup.c order of operations).
   const float x0c = v[0]->x - 0.5f, y0c = v[0]->y - 0.5f;
   const float dx01 = v[0]->x - v[1]->x, dy01 = v[0]->y - v[1]->y;
@@ -244,6 +295,86 @@ bool setupTriangle(const DeviceProfile& dev, const Framebuffer& fb, const WinVer
   t.w = coef(v[0]->oow, v[1]->oow, v[2]->oow);
   for (int k = 0; k < nv; ++k) t.v[k] = coef(v[0]->v[k], v[1]->v[k], v[2]->v[k]);
   return true;
+}
+
+// SwiftShader's SetupRoutine for one triangle (submission order in[0..2]): coverage from the projected
+// fixed-point positions (cov, the clipped polygon's when clipped), planes from the triangle's own vertices
+// rotated so that the minimum clip y, then the maximum clip w comes first; see Raster::Setup::Reactor.
+bool setupTriangleReactor(const DeviceProfile& dev, const Framebuffer& fb, const RVertex* const in[3],
+                          const int64_t covX[3], const int64_t covY[3], int nv, bool cullBack, uint32_t triangle,
+                          TriSetup& t) {
+  int order[3];
+  if (!setupCoverage(dev, fb, covX, covY, cullBack, triangle, t, order)) return false;
+  t.reactor = true;
+  const RVertex* v0 = in[0];
+  const RVertex* v1 = in[1];
+  const RVertex* v2 = in[2];
+  auto rotate1 = [&](bool c) {  // (v0, v1, v2) = (v1, v2, v0)
+    if (c) std::tie(v0, v1, v2) = std::make_tuple(v1, v2, v0);
+  };
+  auto rotate2 = [&](bool c) {  // (v0, v1, v2) = (v2, v0, v1)
+    if (c) std::tie(v0, v1, v2) = std::make_tuple(v2, v0, v1);
+  };
+  {
+    const float y0 = v0->cy, y1 = v1->cy, y2 = v2->cy;
+    auto mn = [](float a, float b) { return a < b ? a : b; };  // minss
+    const float yMin = mn(mn(y0, y1), y2);
+    rotate1(yMin == y1);
+    rotate2(yMin == y2);
+  }
+  {
+    const float w0 = v0->cw, w1 = v1->cw, w2 = v2->cw;
+    auto mx = [](float a, float b) { return a > b ? a : b; };  // maxss
+    const float wMax = mx(mx(w0, w1), w2);
+    rotate1(wMax == w1);
+    rotate2(wMax == w2);
+  }
+  const float F = 1.0f / float(1 << dev.raster.subPixelBits);
+  const float w1 = v1->cw, w2 = v2->cw, rhw0 = v0->rhw;
+  const int32_t X0 = v0->X, Y0 = v0->Y;
+  const int32_t X1 = v1->X - X0, Y1 = v1->Y - Y0, X2 = v2->X - X0, Y2 = v2->Y - Y0;
+  const float dx = float(X0) * F, dy = float(Y0) * F;
+  const float x1 = w1 * F * float(X1), y1 = w1 * F * float(Y1);
+  const float x2 = w2 * F * float(X2), y2 = w2 * F * float(Y2);
+  const float a = x1 * y2 - x2 * y1;
+  t.xq[0] = 0.0f - dx, t.xq[1] = 1.0f - dx;
+  t.yq[0] = 0.0f - dy, t.yq[1] = 1.0f - dy;
+  float M[3][3] = {{0, 0, rhw0}, {0, 0, 0}, {0, 0, 0}};  // rows: x, y, z components of M[0..2]
+  if (a != 0.0f) {
+    const float A = 1.0f / a, D = A * rhw0;
+    M[0][0] = (y1 * w2 - y2 * w1) * D;
+    M[0][1] = (x2 * w1 - x1 * w2) * D;
+    M[1][0] = y2 * A;
+    M[1][1] = -x2 * A;
+    M[2][0] = -y1 * A;
+    M[2][1] = x1 * A;
+  }
+  t.w.dadx = (M[0][0] + M[1][0]) + M[2][0];
+  t.w.dady = (M[0][1] + M[1][1]) + M[2][1];
+  t.w.a0 = (M[0][2] + M[1][2]) + M[2][2];
+  {  // depth: the plane of z / w over the fixed-point positions, times the depth range [0, 1]
+    const float z0 = v0->z, z1 = v1->z - z0, z2 = v2->z - z0;
+    const float fx1 = float(X1) * F, fy1 = float(Y1) * F, fx2 = float(X2) * F, fy2 = float(Y2) * F;
+    const float D = 1.0f / (fx1 * fy2 - fx2 * fy1);
+    t.z.dadx = (fy2 * z1 - fy1 * z2) * D;
+    t.z.dady = (fx1 * z2 - fx2 * z1) * D;
+    t.z.a0 = z0 * 1.0f + 0.0f;
+  }
+  for (int k = 0; k < nv; ++k) {
+    const float i0 = v0->v[k], i1 = v1->v[k], i2 = v2->v[k];
+    t.v[k].dadx = (i0 * M[0][0] + i1 * M[1][0]) + i2 * M[2][0];
+    t.v[k].dady = (i0 * M[0][1] + i1 * M[1][1]) + i2 * M[2][1];
+    t.v[k].a0 = (i0 * M[0][2] + i1 * M[1][2]) + i2 * M[2][2];
+  }
+  return true;
+}
+
+// Reactor's perspective reciprocal (Raster::PerspectiveRcp).
+float reactorRcp(DeviceProfile::Raster::PerspectiveRcp mode, float w) {
+  if (mode == DeviceProfile::Raster::PerspectiveRcp::Division) return 1.0f / w;
+  static const float exact = 1.0f / _mm_cvtss_f32(_mm_rcp_ss(_mm_set_ss(1.0f)));  // exactAtPow2
+  float r = _mm_cvtss_f32(_mm_rcp_ss(_mm_set_ss(w))) * exact;
+  return (r + r) - (w * r) * r;
 }
 
 inline float interp(bool fused, const Plane3& p, float px, float py) {
@@ -431,6 +562,37 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
       any |= code, all &= code;
     }
     const bool fusedVp = dev.raster.viewportFma;
+    if (dev.raster.setup == DeviceProfile::Raster::Setup::Reactor) {
+      const int bits = dev.raster.subPixelBits;
+      RVertex rv[3];
+      for (int i = 0; i < 3; ++i) rv[i] = toReactor(cv[i], nv, bits, sx, sx, sy, sy);
+      const RVertex* p[3] = {&rv[0], &rv[1], &rv[2]};
+      if (!any) {
+        const int64_t X[3] = {rv[0].X, rv[1].X, rv[2].X}, Y[3] = {rv[0].Y, rv[1].Y, rv[2].Y};
+        ok[t] = setupTriangleReactor(dev, fb, p, X, Y, nv, in.cullBack, uint32_t(t), tris[t]);
+        if (!ok[t]) culled.fetch_add(1, std::memory_order_relaxed);
+        return;
+      }
+      clipped.fetch_add(1, std::memory_order_relaxed);
+      if (all) return;
+      const int n = clipPolygon(dev.raster, cv, any, nv);
+      if (n < 3) return;
+      // Coverage from the clipped polygon, re-projected (SetupRoutine: rhw = w != 0 ? 1 / w : 1); the planes
+      // stay the triangle's own. The polygon's fan pieces tile it exactly under the top-left rule.
+      int64_t PX[kMaxPoly], PY[kMaxPoly];
+      const float F = float(1 << bits);
+      for (int i = 0; i < n; ++i) {
+        const float rhw = cv[i].c[3] != 0.0f ? 1.0f / cv[i].c[3] : 1.0f;
+        PX[i] = roundIntRne((sx * F - F / 2) + (cv[i].c[0] * rhw) * (sx * F));
+        PY[i] = roundIntRne((sy * F - F / 2) + (cv[i].c[1] * rhw) * (sy * F));
+      }
+      for (int i = 1; i + 1 < n; ++i) {
+        const int64_t X[3] = {PX[0], PX[i], PX[i + 1]}, Y[3] = {PY[0], PY[i], PY[i + 1]};
+        TriSetup s;
+        if (setupTriangleReactor(dev, fb, p, X, Y, nv, in.cullBack, uint32_t(t), s)) extra[t].push_back(s);
+      }
+      return;
+    }
     if (!any) {
       WinVertex w[3];
       for (int i = 0; i < 3; ++i) w[i] = toWindow(fusedVp, cv[i], nv, sx, sx, sy, sy);
@@ -474,7 +636,7 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
     const int tx0 = int(b % size_t(tilesX)) * kTile, ty0 = int(b / size_t(tilesX)) * kTile;
     const int tx1 = std::min(tx0 + kTile, int(fb.width)) - 1, ty1 = std::min(ty0 + kTile, int(fb.height)) - 1;
     size_t quads = 0, frags = 0;
-    if (!fs) {  // depth-only pipeline
+    if (!fs && dev.raster.setup == DeviceProfile::Raster::Setup::Gallivm) {  // depth-only pipeline
       for (const TriSetup* s : bins[b]) {
         if (fused) depthOnlyTriangle<true>(*s, bits, tx0, ty0, tx1, ty1, fb, quads, frags);
         else depthOnlyTriangle<false>(*s, bits, tx0, ty0, tx1, ty1, fb, quads, frags);
@@ -523,9 +685,17 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
           if (!covered) continue;
           q.x = qx, q.y = qy, q.covered = covered, q.triangle = s->triangle, q.frontFacing = s->front;
           uint8_t live = 0;
+          float xr[4], yr[4];  // Reactor: pixel positions relative to vertex 0
           for (int i = 0; i < 4; ++i) {
             const float px = float(qx + (i & 1)), py = float(qy + (i >> 1));
-            q.z[i] = interp(fused, s->z, px, py);
+            if (s->reactor) {
+              xr[i] = float(qx) + s->xq[i & 1], yr[i] = float(qy) + s->yq[i >> 1];
+              const float D = s->z.a0 + yr[i] * s->z.dady;
+              const float z = D + xr[i] * s->z.dadx;
+              q.z[i] = rmin(rmax(z, 0.0f), 1.0f);  // depth clamp to the [0, 1] range of a D32F buffer
+            } else {
+              q.z[i] = interp(fused, s->z, px, py);
+            }
             if (covered & (1u << i)) {
               const size_t at = size_t(qy + (i >> 1)) * fb.width + size_t(qx + (i & 1));
               if (q.z[i] <= fb.depth[at]) live |= uint8_t(1u << i);
@@ -535,7 +705,15 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
           if (!live) continue;
           q.live = live;
           if (fs) {
-            for (int i = 0; nv > 0 && i < 4; ++i) {
+            for (int i = 0; s->reactor && nv > 0 && i < 4; ++i) {
+              const float D = s->w.a0 + yr[i] * s->w.dady;
+              const float rhw = reactorRcp(dev.raster.perspectiveRcp, D + xr[i] * s->w.dadx);
+              for (int k = 0; k < nv; ++k) {
+                const float Dv = s->v[k].a0 + yr[i] * s->v[k].dady;
+                q.v[k][i] = (Dv + xr[i] * s->v[k].dadx) * rhw;
+              }
+            }
+            for (int i = 0; !s->reactor && nv > 0 && i < 4; ++i) {
               const float px = float(qx + (i & 1)), py = float(qy + (i >> 1));
               const float oow = 1.0f / interp(fused, s->w, px, py);
               for (int k = 0; k < nv; ++k) q.v[k][i] = interp(fused, s->v[k], px, py) * oow;

@@ -18,7 +18,7 @@ struct VerifyOptions {
   std::string stages;         // texture: "compute", "fragment" or both (empty = both)
   bool implicitLod = false;   // texture: fragment-stage texture() with the LOD from quad derivatives
   uint64_t seeds = 1;         // texture: run the seeds seed .. seed + seeds - 1
-  std::vector<std::string> profileSet;  // texture: KEY=VALUE overrides of the device profile (emu::setProfileField)
+  std::vector<std::string> profileSet;  // every suite but math (raster and the pass suites too): KEY=VALUE overrides of the device profile (emu::setProfileField)
   std::string image;          // texture: sample this image file (MIP chain from the shared kernel) instead of random textures
   std::string scene;          // raster/shadow/shade/frame: scene file
   uint32_t width = 0, height = 0;  // raster/shade/frame: override the scene's image size

@@ -24,6 +24,7 @@ namespace {
 struct Setup {
   Scene scene;
   std::unique_ptr<vk::Context> ctx;
+  std::unique_ptr<emu::DeviceProfile> profile;  // the device's, with --profile-set overrides
   const emu::DeviceProfile* dev = nullptr;
 };
 
@@ -39,7 +40,12 @@ Setup setUp(const VerifyOptions& opts, std::ostream& out) {
   co.device = opts.device;
   co.validation = opts.validate;
   s.ctx = std::make_unique<vk::Context>(co);
-  s.dev = &emu::profileForDevice(s.ctx->deviceName());
+  s.profile = std::make_unique<emu::DeviceProfile>(emu::profileForDevice(s.ctx->deviceName()));
+  for (const std::string& kv : opts.profileSet) {
+    emu::setProfileField(*s.profile, kv);
+    out << "profile override: " << kv << "\n";
+  }
+  s.dev = s.profile.get();
   out << "scene " << opts.scene << ": " << s.scene.width << "x" << s.scene.height << ", " << s.scene.triangles()
       << " triangles; device: " << s.ctx->deviceName() << " (profile " << s.dev->name << ")\n";
   return s;

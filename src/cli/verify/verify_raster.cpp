@@ -44,7 +44,11 @@ int verifyRaster(const VerifyOptions& opts, std::ostream& out) {
   co.device = opts.device;
   co.validation = opts.validate;
   vk::Context ctx(co);
-  const emu::DeviceProfile& dev = emu::profileForDevice(ctx.deviceName());
+  emu::DeviceProfile dev = emu::profileForDevice(ctx.deviceName());
+  for (const std::string& kv : opts.profileSet) {
+    emu::setProfileField(dev, kv);
+    out << "profile override: " << kv << "\n";
+  }
   out << "scene " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << scene.triangles()
       << " triangles; device: " << ctx.deviceName() << " (profile " << dev.name << ")\n";
   GbufferStats st;
