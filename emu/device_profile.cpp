@@ -67,6 +67,7 @@ const DeviceProfile& swiftshaderProfile() {
     q.raster.fansClippedPolygons = false;  // the full-screen triangle's clipped polygon is one primitive
     q.raster.setup = DeviceProfile::Raster::Setup::Reactor;
     q.raster.subPixelBits = 4;  // limits.subPixelPrecisionBits (vulkaninfo): Chromium's legacy-precision build
+    q.raster.fineDerivatives = false;  // dFdx / dFdy per quad (row 0 / column 0): verify raster, uv derivatives
     q.implicitLod = DeviceProfile::ImplicitLod::ReactorLog2Sqrt;
     q.implicitNearestShortcut = false;  // a gallivm LOD-selector shortcut
     q.loopIterationLimit = 0;  // SwiftShader's Reactor JIT has no loop limiter
@@ -142,6 +143,8 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
     if (v == "division") p.raster.perspectiveRcp = DeviceProfile::Raster::PerspectiveRcp::Division;
     else if (v == "rcpnewton") p.raster.perspectiveRcp = DeviceProfile::Raster::PerspectiveRcp::RcpNewton;
     else throw std::invalid_argument("profile field perspectiveRcp: expected division or rcpnewton, got '" + std::string(v) + "'");
+  } else if (key == "fineDerivatives") {
+    p.raster.fineDerivatives = parseBool(key, v);
   } else if (key == "subPixelBits") {
     p.raster.subPixelBits = parseInt(key, v, 1, 16);
   } else if (key == "fansClippedPolygons") {
@@ -163,7 +166,7 @@ void setProfileField(DeviceProfile& p, std::string_view key, std::string_view v)
                                 "' (known: maskedFragmentLanes, implicitNearestShortcut, computeVectorLanes, "
                                 "fragmentVectorW, fragmentVectorH, filterWeightFracBits, lodFractionBits, "
                                 "unorm8FixedPoint, unorm8Path, texAddressing, mipSelection, implicitLod, fansClippedPolygons, "
-                                "rasterSetup, perspectiveRcp, subPixelBits, "
+                                "rasterSetup, perspectiveRcp, subPixelBits, fineDerivatives, "
                                 "denormCompute, denormFragment, "
                                 "loopIterationLimit, filterLerpFma)");
   }
