@@ -98,7 +98,7 @@ struct DeviceProfile {
   // glints lighting table: docs/RESULTS.md). Drivers split such work so no invocation reaches it.
   uint32_t loopIterationLimit;
   // Float-path filter lerp: true, one fused fma(w, b - a, a) (lavapipe); false, a + w (b - a) as a
-  // separate multiply and add (SwiftShader's SamplerCore blends, issue 18: under test, unverified).
+  // separate multiply and add (SwiftShader's SamplerCore blends, issue 18).
   bool filterLerpFma = true;
   // Texture unit strategies: whose arithmetic each stage of the sampler follows (docs/DESIGN.md s3).
   // Addressing. Gallivm (Mesa lp_bld_sample): clamp as max(min(u W, W) - 1/2, 0), repeat of a
@@ -122,8 +122,8 @@ struct DeviceProfile {
 
 const DeviceProfile& lavapipeProfile();
 const DeviceProfile& nvidiaProfile();
-/// SwiftShader (issue 18): lavapipe's fields as a stand-in except the measured ones (denormals flushed in
-/// both stages, unfused filter lerps), unverified, no loop limit.
+/// SwiftShader (issue 18), verified: its texture unit and rasterizer as Reactor strategies, 4 sub-pixel bits, coarse
+/// derivatives, denormals flushed in both stages, no loop limit (docs/DESIGN.md s3).
 const DeviceProfile& swiftshaderProfile();
 /// Profile by name ("lavapipe", "nvidia"); throws std::invalid_argument listing the known names.
 const DeviceProfile& profileByName(std::string_view name);

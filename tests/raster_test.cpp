@@ -26,7 +26,8 @@ void clipOf(float x, float y, float z, uint32_t W, uint32_t H, float* c) {
 }
 
 // Counts how many times each pixel is shaded across a set of triangles.
-std::vector<int> coverageCount(uint32_t W, uint32_t H, const std::vector<float>& clip, const std::vector<uint32_t>& idx) {
+std::vector<int> coverageCount(uint32_t W, uint32_t H, const std::vector<float>& clip, const std::vector<uint32_t>& idx,
+                               const emu::DeviceProfile& profile = dev()) {
   emu::Framebuffer fb(W, H, 1, 2.0f);  // depth test never rejects (z <= 2)
   std::vector<int> count(size_t(W) * H, 0);
   std::vector<float> vary(clip.size() / 4, 0.0f);
@@ -37,7 +38,7 @@ std::vector<int> coverageCount(uint32_t W, uint32_t H, const std::vector<float>&
     in.numVaryings = 1;
     in.indices = idx.data() + 3 * t;
     in.triangles = 1;
-    emu::draw(dev(), fb, in, [&](const emu::Quad& q, float (*out)[4]) {
+    emu::draw(profile, fb, in, [&](const emu::Quad& q, float (*out)[4]) {
       for (int i = 0; i < 4; ++i) {
         out[0][i] = 0.0f;
         if (q.live & (1 << i)) ++count[size_t(q.y + (i >> 1)) * W + size_t(q.x + (i & 1))];
@@ -79,6 +80,43 @@ TEST(Raster, SharedEdgesCoverEachPixelExactlyOnce) {
       shaded += c;
     }
     EXPECT_GT(shaded, 1000) << "trial " << trial;
+  }
+}
+
+TEST(Raster, SwiftShaderSetupCoversLikeTheTopLeftRule) {
+  // Raster::Setup::Reactor at SwiftShader's 4 sub-pixel bits: SwiftShader walks each edge into per-row spans
+  // (left = ceil(x_edge), covered left <= px < right, rows with y*16 in [y_top, y_bottom)), which is the top-left
+  // rule of the edge functions. With vertices on pixel centres (exact in both fixed points) the pixels are those of
+  // lavapipe's profile, one by one; off centres every pixel of a fan is still shaded at most once.
+  const uint32_t W = 64, H = 64;
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    const bool snapped = trial % 2 == 0;
+    std::vector<float> clip;
+    std::vector<uint32_t> idx;
+    auto vert = [&](float x, float y) {
+      if (snapped) x = std::floor(x) + 0.5f, y = std::floor(y) + 0.5f;
+      float c[4];
+      clipOf(x, y, 0.5f, W, H, c);
+      clip.insert(clip.end(), c, c + 4);
+      return uint32_t(clip.size() / 4 - 1);
+    };
+    const uint32_t centre = vert(31.3f, 32.7f);
+    const int n = 9;
+    std::vector<uint32_t> ring;
+    for (int k = 0; k < n; ++k) {
+      const float a = float(k) * 6.2831853f / n + float(trial) * 0.13f;
+      ring.push_back(vert(32.0f + 25.0f * std::cos(a), 32.0f + 25.0f * std::sin(a)));
+    }
+    for (int k = 0; k < n; ++k) idx.insert(idx.end(), {centre, ring[size_t(k)], ring[size_t((k + 1) % n)]});
+    const auto ss = coverageCount(W, H, clip, idx, emu::swiftshaderProfile());
+    int shaded = 0;
+    for (int c : ss) {
+      EXPECT_LE(c, 1) << "trial " << trial;
+      shaded += c;
+    }
+    EXPECT_GT(shaded, 1000) << "trial " << trial;
+    if (snapped) EXPECT_EQ(ss, coverageCount(W, H, clip, idx, dev())) << "trial " << trial;
   }
 }
 

@@ -217,9 +217,11 @@ TEST(DeviceProfile, LookupAndUnknownNames) {
   EXPECT_TRUE(emu::profileByName("lavapipe").verified);
   EXPECT_FALSE(emu::profileByName("nvidia").verified);
   EXPECT_EQ(emu::profileForDevice("llvmpipe (LLVM 15.0.6, 256 bits)").name, "lavapipe");
-  // SwiftShader (issue 18): found by its device name, unverified until its own choices are measured.
+  // SwiftShader (issue 18): found by its device name; verified (every verify suite bit-identical).
   EXPECT_EQ(emu::profileForDevice("SwiftShader Device (Subzero)").name, "swiftshader");
-  EXPECT_FALSE(emu::profileByName("swiftshader").verified);
+  EXPECT_TRUE(emu::profileByName("swiftshader").verified);
+  EXPECT_EQ(emu::swiftshaderProfile().raster.subPixelBits, 4);  // limits.subPixelPrecisionBits
+  EXPECT_FALSE(emu::swiftshaderProfile().raster.fineDerivatives);
   EXPECT_EQ(emu::profileByName("swiftshader").loopIterationLimit, 0u);
   EXPECT_EQ(emu::swiftshaderProfile().denorm(emu::Stage::Compute), emu::DenormMode::Flush);  // verify math, measured
   EXPECT_FALSE(emu::swiftshaderProfile().filterLerpFma);  // verify texture, measured
