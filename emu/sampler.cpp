@@ -224,12 +224,44 @@ F weight(F w, const DeviceProfile& dev, LaneFilter filter) {
   return lrint(w * scale) * (1.0f / scale);
 }
 
+typedef float Px __attribute__((vector_size(16)));
+inline Px loadPx(const uint8_t* p) {
+  Px r;
+  std::memcpy(&r, p, 16);
+  return r;
+}
+inline Px lerpPx(float w, Px a, Px b, bool fused) {
+  const Px d = b - a;
+  Px r;
+  if (fused)
+    for (int c = 0; c < 4; ++c) r[c] = __builtin_fmaf(w, d[c], a[c]);
+  else
+    for (int c = 0; c < 4; ++c) {
+      const float p = w * d[c];
+      r[c] = a[c] + p;
+    }
+  return r;
+}
+
 // One level, one lane, SwiftShader's addressing (DeviceProfile::TexAddressing::Reactor).
 C4<float> sampleLevelReactor(const Texture& t, const DeviceProfile& dev, int32_t level, int32_t layer, float u, float v,
                              LaneFilter filter, AddressMode au, AddressMode av, bool sc) {
   const int32_t w = int32_t(t.levelWidth(uint32_t(level))), h = int32_t(t.levelHeight(uint32_t(level)));
   const bool point = filter == LaneFilter::Nearest, offset = filter != LaneFilter::LinearNoOffset;
   const reactor::Axis x = reactor::addressFloat(u, w, au, point, offset), y = reactor::addressFloat(v, h, av, point, offset);
+  if (t.format() == Format::RGBA32F && !sc) {  // whole texels as 4-float vectors: the same per-channel operations
+    const uint8_t* base = t.levels()[size_t(level)].data();
+    auto at = [&](int32_t xi, int32_t yi) { return loadPx(base + ((size_t(layer) * size_t(h) + size_t(yi)) * size_t(w) + size_t(xi)) * 16); };
+    Px c;
+    if (point) {
+      c = at(x.i0, y.i0);
+    } else {
+      const float a = weight(x.f, dev, filter), b = weight(y.f, dev, filter);
+      const bool fused = dev.filterLerpFma;
+      c = lerpPx(b, lerpPx(a, at(x.i0, y.i0), at(x.i1, y.i0), fused), lerpPx(a, at(x.i0, y.i1), at(x.i1, y.i1), fused), fused);
+    }
+    return {c[0], c[1], c[2], c[3]};
+  }
   if (point) return loadTexel(t, level, layer, x.i0, y.i0, sc);
   const float a = weight(x.f, dev, filter), b = weight(y.f, dev, filter);
   C4<float> t00 = loadTexel(t, level, layer, x.i0, y.i0, sc), t10 = loadTexel(t, level, layer, x.i1, y.i0, sc);
@@ -447,25 +479,6 @@ Texel4 sampleOne(const Texture& tex, const SamplerDesc& s, const DeviceProfile& 
 // four channels lerp together with no SoA transposes of the 8 (or 16) texels per lane. Per channel
 // these are exactly the operations of lerp4 (fma(w, b - a, a)), so the bits are the same
 // (tests/texture_test.cpp: batch == one-lane model).
-typedef float Px __attribute__((vector_size(16)));
-inline Px loadPx(const uint8_t* p) {
-  Px r;
-  std::memcpy(&r, p, 16);
-  return r;
-}
-inline Px lerpPx(float w, Px a, Px b, bool fused) {
-  const Px d = b - a;
-  Px r;
-  if (fused)
-    for (int c = 0; c < 4; ++c) r[c] = __builtin_fmaf(w, d[c], a[c]);
-  else
-    for (int c = 0; c < 4; ++c) {
-      const float p = w * d[c];
-      r[c] = a[c] + p;
-    }
-  return r;
-}
-
 template <int N>
 struct LevelTaps {
   I32<N> o00, o10, o01, o11;  // byte offsets of the four texels
