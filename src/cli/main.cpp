@@ -8,6 +8,7 @@
 #include "util/compare.h"
 #include "reference/reference.h"
 #include "cli/bench.h"
+#include "cli/calibrate.h"
 #include "cli/sweep.h"
 #include "cli/render.h"
 #include "scene/scene.h"
@@ -108,6 +109,12 @@ int main(int argc, char** argv) {
   cmp->add_option("A", cmpA, "image")->required();
   cmp->add_option("B", cmpB, "reference image")->required();
   shadetwin::BenchOptions bo;
+  shadetwin::CalibrateOptions co;
+  auto* calibrate = app.add_subcommand("calibrate", "measure a software Vulkan device with microkernels and write its "
+                                                    "description for the performance model (devices/D.json)");
+  calibrate->add_option("--device", co.device, "Vulkan device (substring of its name: lavapipe, swiftshader)");
+  calibrate->add_option("--out", co.out, "output file (default devices/<device>.json)");
+  calibrate->add_flag("--quick", co.quick, "short runs (rough rates; for tests)");
   auto* bench = app.add_subcommand("bench", "time passes on the emulator and on a Vulkan device in one run; last line: ratio emu/vulkan");
   bench->add_option("--scene", bo.scene, "scene file");
   bench->add_option("--passes", bo.passes, "comma-separated passes: gbuffer, shadow, shade");
@@ -160,6 +167,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("render")) return shadetwin::renderCommand(ro, std::cout);
     if (app.got_subcommand("sweep")) return shadetwin::sweepCommand(so, std::cout);
+    if (app.got_subcommand("calibrate")) return shadetwin::calibrateCommand(co, std::cout);
     if (app.got_subcommand("bench")) {
       if (!bo.technique.empty() && bench->get_option("--passes")->count() == 0) bo.passes = "gbuffer,shade";
       return shadetwin::benchCommand(bo, std::cout);

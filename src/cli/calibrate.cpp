@@ -1,0 +1,177 @@
+#include "cli/calibrate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iomanip>
+#include <memory>
+#include <span>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "vk/context.h"
+
+namespace shadetwin {
+
+namespace {
+#include "calibrate_comp.inc"
+
+struct Push {
+  uint32_t kind, iters, count, pad;
+  float c, lod, step, pad2;
+};
+static_assert(sizeof(Push) == 32, "calibrate.comp push constants");
+
+enum Kind : uint32_t { kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK };
+
+// The host's last-level cache (sysfs), for the description: line size and capacity.
+void hostCache(int& lineBytes, double& bytes) {
+  lineBytes = 64, bytes = 0.0;
+  int bestLevel = 0;
+  for (int idx = 0; idx < 8; ++idx) {
+    const std::string dir = "/sys/devices/system/cpu/cpu0/cache/index" + std::to_string(idx) + "/";
+    std::ifstream lv(dir + "level"), sz(dir + "size"), ln(dir + "coherency_line_size"), ty(dir + "type");
+    int level = 0, line = 0;
+    std::string size, type;
+    if (!(lv >> level) || !(sz >> size) || !(ln >> line) || !(ty >> type) || type == "Instruction") continue;
+    double b = std::stod(size);
+    if (size.back() == 'K') b *= 1024.0;
+    if (size.back() == 'M') b *= 1024.0 * 1024.0;
+    if (level >= bestLevel) bestLevel = level, bytes = b, lineBytes = line;
+  }
+  if (bytes <= 0.0) bytes = 1024.0 * 1024.0;
+}
+}  // namespace
+
+model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& log) {
+  vk::Context ctx({opts.device == "lavapipe" ? std::string("llvmpipe") : opts.device, false});
+  log << "calibrate: " << ctx.deviceName() << (opts.quick ? " (quick)" : "") << std::endl;
+  const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                     VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+  std::unique_ptr<vk::Kernel> kernels[kEmptyK + 1];  // one pipeline per kind (specialization constant 0)
+  auto kernel = [&](uint32_t kind) -> vk::Kernel& {
+    if (!kernels[kind]) {
+      const uint32_t spec[] = {kind};
+      kernels[kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout, sizeof(Push),
+                                                   std::span<const uint32_t>{}, spec);
+    }
+    return *kernels[kind];
+  };
+  // A 256^2 RGBA32F texture with its full chain of random texels.
+  const uint32_t T = 256;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> U(0.0f, 1.0f);
+  std::vector<std::vector<uint8_t>> levels;
+  for (uint32_t s = T; s >= 1; s /= 2) {
+    std::vector<float> px(size_t(s) * s * 4);
+    for (float& v : px) v = U(rng);
+    levels.emplace_back(px.size() * 4);
+    std::memcpy(levels.back().data(), px.data(), levels.back().size());
+  }
+  vk::Image img(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, T, T, 1, levels, 16, VK_IMAGE_VIEW_TYPE_2D);
+  auto makeSampler = [&](VkFilter f, VkSamplerMipmapMode m) {
+    VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    si.magFilter = si.minFilter = f;
+    si.mipmapMode = m;
+    si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    si.maxLod = 1000.0f;
+    return std::make_unique<vk::Sampler>(ctx, si);
+  };
+  auto nearest = makeSampler(VK_FILTER_NEAREST, VK_SAMPLER_MIPMAP_MODE_NEAREST);
+  auto bilinear = makeSampler(VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_NEAREST);
+  auto trilinear = makeSampler(VK_FILTER_LINEAR, VK_SAMPLER_MIPMAP_MODE_LINEAR);
+  const size_t copyVec4s = (opts.quick ? 8u : 64u) << 16;  // vec4s per buffer: 8 MiB / 64 MiB, past the host caches
+  vk::Buffer src(ctx, copyVec4s * 16), dst(ctx, copyVec4s * 16);
+  std::memset(src.data(), 0, copyVec4s * 16);
+  const uint32_t count = opts.quick ? 16384u : 131072u;
+  const double target = opts.quick ? 0.02 : 0.25;  // seconds per timed run
+
+  auto timeRun = [&](Push p, VkSampler s, uint32_t n) {
+    const vk::Binding b[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, img.view(), s},
+                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, src.handle()},
+                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dst.handle()}};
+    p.count = n;
+    std::vector<double> t;
+    for (int r = 0; r < 4; ++r) {  // run 0 warms up (pipeline, caches), then the median of three
+      const auto t0 = std::chrono::steady_clock::now();
+      kernel(p.kind).run(b, &p, n);
+      t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    t.erase(t.begin());
+    std::sort(t.begin(), t.end());
+    return t[1];
+  };
+  // Launch cost: an empty dispatch of one workgroup, median of many.
+  Push e{kEmptyK, 0, 0, 0, 1.0f, 0.0f, 0.0f, 0.0f};
+  std::vector<double> empties;
+  for (int r = 0; r < 15; ++r) empties.push_back(timeRun(e, nearest->handle(), 64));
+  std::sort(empties.begin(), empties.end());
+  const double dispatch = empties[empties.size() / 2];
+  // Iterations grow until a run takes `target` seconds; the rate is work / (time - dispatch).
+  auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod) {
+    Push p{kind, 16, 0, 0, c, lod, 0.0173f, 0.0f};
+    double t = 0.0;
+    for (;;) {
+      t = timeRun(p, s, count);
+      if (std::getenv("SHADETWIN_CALIBRATE_TRACE")) log << "    kind " << kind << " iters " << p.iters << ": " << t << " s\n";
+      if (t >= target || p.iters >= (1u << 24)) break;
+      p.iters = uint32_t(std::min<double>(double(1u << 24), double(p.iters) * std::max(2.0, 1.2 * target / std::max(t, 1e-6))));
+    }
+    return double(count) * double(p.iters) * workPerIter / std::max(t - dispatch, 1e-9);
+  };
+  model::DeviceDesc d;
+  const std::string name = ctx.deviceName();
+  d.device = name.find("SwiftShader") != std::string::npos ? "swiftshader" : name.find("llvmpipe") != std::string::npos ? "lavapipe" : opts.device;
+  d.name = name;
+  d.verified = true;
+  d.cores = int(std::max(1u, std::thread::hardware_concurrency()));
+  d.lanes = d.device == "swiftshader" ? 4 : name.find("256 bits") != std::string::npos ? 8 : 4;
+  using model::OpClass;
+  auto& ops = d.opsPerSecond;
+  ops[model::kFAdd] = rate(kFAddK, 32.0, nearest->handle(), 1.0e-3f, 0.0f);
+  ops[model::kFMul] = rate(kFMulK, 32.0, nearest->handle(), 1.0000001f, 0.0f);
+  ops[model::kIAlu] = rate(kIAluK, 96.0, nearest->handle(), 1.5f, 0.0f);
+  ops[model::kIMul] = rate(kIMulK, 32.0, nearest->handle(), 1.5f, 0.0f);
+  {  // cvt: 2 conversions + 1 fmul per chain step; the fmul's share at the measured fmul rate is removed
+    const double mixed = rate(kCvtK, 96.0, nearest->handle(), 1.0001f, 0.0f);  // ops/s of the mix
+    const double perStep = 3.0 / mixed, alu = 1.0 / ops[model::kFMul];
+    ops[model::kCvt] = 2.0 / std::max(perStep - alu, perStep * 0.25);
+  }
+  {  // select + compare: 1 + 1 per chain step beside 2 fadd, whose share is removed; the two share the rest
+    const double mixed = rate(kSelectK, 128.0, nearest->handle(), 0.75f, 0.0f);
+    const double perStep = 4.0 / mixed, fadd = 2.0 / ops[model::kFAdd];
+    ops[model::kSelect] = ops[model::kFCmp] = 2.0 / std::max(perStep - fadd, perStep * 0.25);
+  }
+  d.lookupsPerSecond[model::kNearest] = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
+  d.lookupsPerSecond[model::kBilinear] = rate(kTexK, 1.0, bilinear->handle(), 1.0f, 0.0f);
+  d.lookupsPerSecond[model::kTrilinear] = rate(kTexK, 1.0, trilinear->handle(), 1.0f, 1.5f);
+  {
+    Push p{kCopyK, 1, 0, 0, 1.5f, 0.0f, 0.0f, 0.0f};
+    const double t = timeRun(p, nearest->handle(), uint32_t(copyVec4s / 16));
+    d.bandwidthBytesPerSecond = double(copyVec4s) * 32.0 / std::max(t - dispatch, 1e-9);
+  }
+  d.dispatchSeconds = dispatch;
+  hostCache(d.cacheLineBytes, d.cacheBytes);
+  d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
+                 std::to_string(d.cores) + " cores): microkernels of src/shaders/calibrate.comp only; cache from sysfs";
+  log << std::setprecision(4);
+  for (int c = 0; c < model::kOpClasses; ++c) log << "  " << std::left << std::setw(10) << model::kOpClassNames[c] << ops[size_t(c)] / 1e9 << " Gop/s\n";
+  for (int f = 0; f < model::kTexFilters; ++f)
+    log << "  " << std::left << std::setw(10) << model::kTexFilterNames[f] << d.lookupsPerSecond[size_t(f)] / 1e6 << " Mlookup/s\n";
+  log << "  bandwidth " << d.bandwidthBytesPerSecond / 1e9 << " GB/s\n  dispatch  " << d.dispatchSeconds * 1e6 << " us\n";
+  return d;
+}
+
+int calibrateCommand(const CalibrateOptions& opts, std::ostream& log) {
+  const model::DeviceDesc d = calibrateDevice(opts, log);
+  const std::string out = opts.out.empty() ? "devices/" + d.device + ".json" : opts.out;
+  model::saveDeviceDesc(d, out);
+  log << "wrote " << out << "\n";
+  return 0;
+}
+
+}  // namespace shadetwin

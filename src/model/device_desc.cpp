@@ -1,0 +1,116 @@
+#include "model/device_desc.h"
+
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+namespace shadetwin::model {
+
+namespace {
+using nlohmann::json;
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw std::runtime_error(path + ": " + what);
+}
+
+void checkKeys(const json& j, const std::set<std::string>& allowed, const std::string& path, const std::string& where) {
+  if (!j.is_object()) fail(path, where + " must be an object");
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!allowed.count(it.key())) fail(path, "unknown key '" + where + it.key() + "'");
+  for (const auto& k : allowed)
+    if (!j.contains(k)) fail(path, "missing key '" + where + k + "'");
+}
+
+double positive(const json& j, const std::string& key, const std::string& path, const std::string& where) {
+  const json& v = j.at(key);
+  if (!v.is_number()) fail(path, "'" + where + key + "' must be a number");
+  const double d = v.get<double>();
+  if (!(d > 0.0)) fail(path, "'" + where + key + "' must be positive, got " + v.dump());
+  return d;
+}
+}  // namespace
+
+DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    fail(path, std::string("not valid JSON: ") + e.what());
+  }
+  checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
+                "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
+                "dispatch_seconds"},
+            path, "");
+  DeviceDesc d;
+  for (const char* k : {"device", "name", "provenance"})
+    if (!j.at(k).is_string()) fail(path, std::string("'") + k + "' must be a string");
+  if (!j.at("verified").is_boolean()) fail(path, "'verified' must be true or false");
+  d.device = j.at("device").get<std::string>();
+  d.name = j.at("name").get<std::string>();
+  d.provenance = j.at("provenance").get<std::string>();
+  d.verified = j.at("verified").get<bool>();
+  d.lanes = int(positive(j, "lanes", path, ""));
+  d.cores = int(positive(j, "cores", path, ""));
+  if (!j.at("clock_ghz").is_number() || j.at("clock_ghz").get<double>() < 0.0) fail(path, "'clock_ghz' must be a number >= 0");
+  d.clockGHz = j.at("clock_ghz").get<double>();
+  std::set<std::string> ops(std::begin(kOpClassNames), std::end(kOpClassNames));
+  checkKeys(j.at("ops_per_second"), ops, path, "ops_per_second.");
+  for (int c = 0; c < kOpClasses; ++c) d.opsPerSecond[size_t(c)] = positive(j.at("ops_per_second"), kOpClassNames[c], path, "ops_per_second.");
+  std::set<std::string> filters(std::begin(kTexFilterNames), std::end(kTexFilterNames));
+  checkKeys(j.at("lookups_per_second"), filters, path, "lookups_per_second.");
+  for (int f = 0; f < kTexFilters; ++f)
+    d.lookupsPerSecond[size_t(f)] = positive(j.at("lookups_per_second"), kTexFilterNames[f], path, "lookups_per_second.");
+  d.cacheLineBytes = int(positive(j, "cache_line_bytes", path, ""));
+  d.cacheBytes = positive(j, "cache_bytes", path, "");
+  d.bandwidthBytesPerSecond = positive(j, "bandwidth_bytes_per_second", path, "");
+  d.dispatchSeconds = positive(j, "dispatch_seconds", path, "");
+  return d;
+}
+
+DeviceDesc loadDeviceDesc(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot open the device description");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return parseDeviceDesc(ss.str(), path);
+}
+
+std::string deviceDescJson(const DeviceDesc& d) {
+  json ops = json::object(), lookups = json::object();
+  for (int c = 0; c < kOpClasses; ++c) ops[kOpClassNames[c]] = d.opsPerSecond[size_t(c)];
+  for (int f = 0; f < kTexFilters; ++f) lookups[kTexFilterNames[f]] = d.lookupsPerSecond[size_t(f)];
+  json j = {{"device", d.device},
+            {"name", d.name},
+            {"verified", d.verified},
+            {"provenance", d.provenance},
+            {"lanes", d.lanes},
+            {"cores", d.cores},
+            {"clock_ghz", d.clockGHz},
+            {"ops_per_second", ops},
+            {"lookups_per_second", lookups},
+            {"cache_line_bytes", d.cacheLineBytes},
+            {"cache_bytes", d.cacheBytes},
+            {"bandwidth_bytes_per_second", d.bandwidthBytesPerSecond},
+            {"dispatch_seconds", d.dispatchSeconds}};
+  return j.dump(2) + "\n";
+}
+
+void saveDeviceDesc(const DeviceDesc& d, const std::string& path) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp);
+    if (!f) throw std::runtime_error(path + ": cannot write the device description");
+    f << deviceDescJson(d);
+    if (!f) throw std::runtime_error(path + ": write failed");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error(path + ": cannot rename the finished file into place");
+  }
+}
+
+}  // namespace shadetwin::model

@@ -1,0 +1,42 @@
+// Device descriptions of the performance model (issue 19): what a device can do per second, as data, one
+// JSON file per device in devices/. Software devices (lavapipe, swiftshader) are written by `shadetwin
+// calibrate` from microkernels only (src/shaders/calibrate.comp); GPUs from public figures, unverified until
+// measured on one.
+#pragma once
+#include <array>
+#include <string>
+
+namespace shadetwin::model {
+
+/// Operation classes the counting lane types report (bench/op_count.h) and the microkernels measure.
+enum OpClass { kFAdd, kFMul, kIAlu, kIMul, kCvt, kSelect, kFCmp, kOpClasses };
+inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd", "fmul", "ialu", "imul", "cvt", "select", "fcmp"};
+/// Texture filters the model distinguishes (RGBA32F lookups).
+enum TexFilter { kNearest, kBilinear, kTrilinear, kTexFilters };
+inline constexpr const char* kTexFilterNames[kTexFilters] = {"nearest", "bilinear", "trilinear"};
+
+struct DeviceDesc {
+  std::string device;      // the --device name: lavapipe, swiftshader, h100, h200
+  std::string name;        // the Vulkan device name it was measured on, or the product
+  bool verified = false;   // measured (calibrate) rather than taken from public figures
+  std::string provenance;  // how the numbers were obtained (machine, command, sources)
+  int lanes = 0;           // SIMD lanes per core (GPU: FP32 lanes per SM)
+  int cores = 0;           // host cores the driver uses (GPU: SMs)
+  double clockGHz = 0.0;   // 0 when not known (software devices run at the host's clock)
+  std::array<double, kOpClasses> opsPerSecond{};         // scalar operations per second, whole device
+  std::array<double, kTexFilters> lookupsPerSecond{};    // RGBA32F textureLod lookups per second
+  int cacheLineBytes = 0;
+  double cacheBytes = 0.0;      // the last level shared by all cores (CPU L2/L3 per machine, GPU L2)
+  double bandwidthBytesPerSecond = 0.0;  // read + write of a large buffer
+  double dispatchSeconds = 0.0;          // an empty compute dispatch, submit to completion
+};
+
+/// Parses a description; throws std::runtime_error naming `path` and the key for a missing or unknown key,
+/// a wrong type or a non-positive rate.
+DeviceDesc parseDeviceDesc(const std::string& json, const std::string& path);
+DeviceDesc loadDeviceDesc(const std::string& path);
+std::string deviceDescJson(const DeviceDesc& d);
+/// Writes atomically (a temporary name, renamed when complete).
+void saveDeviceDesc(const DeviceDesc& d, const std::string& path);
+
+}  // namespace shadetwin::model

@@ -1,0 +1,86 @@
+// Device descriptions of the performance model (issue 19): strict parsing with errors that name the file and
+// the key, a lossless round trip, and the shipped files: the two software devices written by `calibrate`,
+// the two NVIDIA GPUs from public figures.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "model/device_desc.h"
+
+namespace {
+using shadetwin::model::DeviceDesc;
+using shadetwin::model::loadDeviceDesc;
+using shadetwin::model::parseDeviceDesc;
+
+std::string shipped(const std::string& d) { return std::string(SHADETWIN_SOURCE_DIR) + "/devices/" + d + ".json"; }
+
+std::string errorOf(const std::string& json) {
+  try {
+    parseDeviceDesc(json, "dev.json");
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DeviceDesc, ShippedFilesLoadAndSayWhereTheyComeFrom) {
+  for (const char* d : {"lavapipe", "swiftshader", "h100", "h200"}) {
+    const DeviceDesc x = loadDeviceDesc(shipped(d));
+    EXPECT_EQ(x.device, d);
+    EXPECT_FALSE(x.provenance.empty());
+    for (double r : x.opsPerSecond) EXPECT_GT(r, 0.0) << d;
+    for (double r : x.lookupsPerSecond) EXPECT_GT(r, 0.0) << d;
+  }
+  const DeviceDesc h100 = loadDeviceDesc(shipped("h100")), h200 = loadDeviceDesc(shipped("h200"));
+  EXPECT_FALSE(h100.verified);  // public figures until a GPU is measured
+  EXPECT_TRUE(loadDeviceDesc(shipped("lavapipe")).verified);
+  EXPECT_EQ(h100.cores, 132);
+  EXPECT_NEAR(h100.opsPerSecond[shadetwin::model::kFAdd], 132.0 * 128.0 * 1.98e9, 1e6);
+  EXPECT_NEAR(h200.bandwidthBytesPerSecond / h100.bandwidthBytesPerSecond, 4.8 / 3.35, 1e-9);
+  // The texture filters' costs are ordered on every device: nearest >= bilinear >= trilinear lookups per second.
+  for (const char* d : {"lavapipe", "swiftshader", "h100", "h200"}) {
+    const DeviceDesc x = loadDeviceDesc(shipped(d));
+    EXPECT_GE(x.lookupsPerSecond[0], x.lookupsPerSecond[1]) << d;
+    EXPECT_GE(x.lookupsPerSecond[1], x.lookupsPerSecond[2]) << d;
+  }
+}
+
+TEST(DeviceDesc, RoundTripIsLossless) {
+  DeviceDesc d = loadDeviceDesc(shipped("swiftshader"));
+  const std::string path = std::string(::testing::TempDir()) + "/round_trip.json";
+  shadetwin::model::saveDeviceDesc(d, path);
+  const DeviceDesc e = loadDeviceDesc(path);
+  EXPECT_EQ(e.name, d.name);
+  EXPECT_EQ(e.opsPerSecond, d.opsPerSecond);
+  EXPECT_EQ(e.lookupsPerSecond, d.lookupsPerSecond);
+  EXPECT_EQ(e.dispatchSeconds, d.dispatchSeconds);
+  std::remove(path.c_str());
+}
+
+TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
+  const std::string good = shadetwin::model::deviceDescJson(loadDeviceDesc(shipped("h100")));
+  EXPECT_EQ(errorOf(good), "");
+  auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    const size_t at = s.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return s.replace(at, from.size(), to);
+  };
+  EXPECT_NE(errorOf("{").find("dev.json: not valid JSON"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"lanes\"", "\"lane\"")).find("unknown key 'lane'"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"fadd\"", "\"fadd2\"")).find("unknown key 'ops_per_second.fadd2'"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"verified\": false", "\"verified\": 0")).find("'verified' must be true or false"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"dispatch_seconds\": 1e-05", "\"dispatch_seconds\": -1")).find("'dispatch_seconds' must be positive"),
+            std::string::npos);
+  EXPECT_NE(errorOf("{\"device\": \"x\"}").find("dev.json: missing key"), std::string::npos);
+  try {
+    loadDeviceDesc("/nonexistent/devices/x.json");
+    FAIL();
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/devices/x.json: cannot open"), std::string::npos);
+  }
+}
+
+}  // namespace
