@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "op_count.h"
+#include "model/op_count.h"
 #include "passes/shade.h"
 #include "inputs/material.h"
 #include "inputs/environment.h"

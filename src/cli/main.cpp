@@ -9,6 +9,7 @@
 #include "reference/reference.h"
 #include "cli/bench.h"
 #include "cli/calibrate.h"
+#include "cli/model_cmd.h"
 #include "cli/sweep.h"
 #include "cli/render.h"
 #include "scene/scene.h"
@@ -115,6 +116,17 @@ int main(int argc, char** argv) {
   calibrate->add_option("--device", co.device, "Vulkan device (substring of its name: lavapipe, swiftshader)");
   calibrate->add_option("--out", co.out, "output file (default devices/<device>.json)");
   calibrate->add_flag("--quick", co.quick, "short runs (rough rates; for tests)");
+  shadetwin::ModelOptions mo;
+  auto* modelCmd = app.add_subcommand("model", "predict a pass's time on a device from its counted work and the device's "
+                                               "description (issue 19: the shading pass so far)");
+  modelCmd->add_option("--scene", mo.scene, "scene file");
+  modelCmd->add_option("--technique", mo.technique, "shading technique (default: the scene's)");
+  modelCmd->add_option("--device", mo.device, "device description devices/<D>.json: lavapipe, swiftshader, h100, h200");
+  modelCmd->add_option("--devices", mo.devicesDir, "folder of the device descriptions (default devices)");
+  modelCmd->add_option("--width", mo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+  modelCmd->add_option("--height", mo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  modelCmd->add_option("--samples", mo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
+  modelCmd->add_option("--repeat", mo.repeat, "timed runs of the measured pass (median)")->check(CLI::Range(1, 100));
   auto* bench = app.add_subcommand("bench", "time passes on the emulator and on a Vulkan device in one run; last line: ratio emu/vulkan");
   bench->add_option("--scene", bo.scene, "scene file");
   bench->add_option("--passes", bo.passes, "comma-separated passes: gbuffer, shadow, shade");
@@ -168,6 +180,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return shadetwin::renderCommand(ro, std::cout);
     if (app.got_subcommand("sweep")) return shadetwin::sweepCommand(so, std::cout);
     if (app.got_subcommand("calibrate")) return shadetwin::calibrateCommand(co, std::cout);
+    if (app.got_subcommand("model")) return shadetwin::modelCommand(mo, std::cout);
     if (app.got_subcommand("bench")) {
       if (!bo.technique.empty() && bench->get_option("--passes")->count() == 0) bo.passes = "gbuffer,shade";
       return shadetwin::benchCommand(bo, std::cout);

@@ -43,12 +43,14 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   }
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
-                "dispatch_seconds"},
+                "dispatch_seconds", "units_overlap"},
             path, "");
   DeviceDesc d;
   for (const char* k : {"device", "name", "provenance"})
     if (!j.at(k).is_string()) fail(path, std::string("'") + k + "' must be a string");
   if (!j.at("verified").is_boolean()) fail(path, "'verified' must be true or false");
+  if (!j.at("units_overlap").is_boolean()) fail(path, "'units_overlap' must be true or false");
+  d.unitsOverlap = j.at("units_overlap").get<bool>();
   d.device = j.at("device").get<std::string>();
   d.name = j.at("name").get<std::string>();
   d.provenance = j.at("provenance").get<std::string>();
@@ -95,7 +97,8 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"cache_line_bytes", d.cacheLineBytes},
             {"cache_bytes", d.cacheBytes},
             {"bandwidth_bytes_per_second", d.bandwidthBytesPerSecond},
-            {"dispatch_seconds", d.dispatchSeconds}};
+            {"dispatch_seconds", d.dispatchSeconds},
+            {"units_overlap", d.unitsOverlap}};
   return j.dump(2) + "\n";
 }
 

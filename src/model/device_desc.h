@@ -29,6 +29,9 @@ struct DeviceDesc {
   double cacheBytes = 0.0;      // the last level shared by all cores (CPU L2/L3 per machine, GPU L2)
   double bandwidthBytesPerSecond = 0.0;  // read + write of a large buffer
   double dispatchSeconds = 0.0;          // an empty compute dispatch, submit to completion
+  // How the units' times combine: false (software devices: the same cores run arithmetic, texture filtering and
+  // memory traffic one after another, so the times add), true (GPUs: separate units overlap, the slowest bounds).
+  bool unitsOverlap = false;
 };
 
 /// Parses a description; throws std::runtime_error naming `path` and the key for a missing or unknown key,

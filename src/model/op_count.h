@@ -1,4 +1,5 @@
-// Operation counting for the roofline of a shading pass (bench/fis_roofline.cpp): lane types that
+// Operation counting for the performance model (issue 19, model/shade_counts.cpp) and the roofline of a shading
+// pass (bench/fis_roofline.cpp): lane types that
 // wrap the emulator's N-lane types (emu/lanes.h), compute exactly what they compute, and count every
 // vector operation by kind in thread-local counters. The shared shading source instantiated with them
 // (namespace shadetwin::shade::counted) runs the same code path as the emulator's SIMD build (same
@@ -16,8 +17,9 @@
 
 namespace opcount {
 
-enum Kind { kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kTexLookup, kTexel, kKinds };
-inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "tex_lookup", "texel"};
+enum Kind { kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kKinds };
+inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "tex_lookup", "texel",
+                                          "tex_nearest", "tex_bilinear", "tex_trilinear"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
 inline void tick(Kind k, uint64_t n = 1) { counts[size_t(k)] += n; }
 
@@ -133,7 +135,13 @@ template <int N>
 V4<opcount::F<N>> textureLodLanes(const Sampler2D& s, opcount::F<N> u, opcount::F<N> v, opcount::F<N> lod,
                                   opcount::F<N> layer = opcount::F<N>(0.0f)) {
   opcount::tick(opcount::kTexLookup, N);
-  for (int i = 0; i < N; ++i) opcount::tick(opcount::kTexel, opcount::texelsRead(lod[i], s.tex->levelCount()));
+  const bool nearest = s.desc.magFilter == emu::Filter::Nearest && s.desc.minFilter == emu::Filter::Nearest;
+  for (int i = 0; i < N; ++i) {
+    const uint64_t texels = opcount::texelsRead(lod[i], s.tex->levelCount());
+    opcount::tick(opcount::kTexel, nearest ? 1 : texels);
+    opcount::tick(nearest ? opcount::kTexNearest : texels == 8 && s.desc.mipmapMode == emu::MipmapMode::Linear ? opcount::kTexTrilinear
+                                                                                                            : opcount::kTexBilinear);
+  }
   const V4<emu::F32<N>> r = textureLodLanes(s, u.x, v.x, lod.x, layer.x);
   return V4<opcount::F<N>>(opcount::F<N>(r.x), opcount::F<N>(r.y), opcount::F<N>(r.z), opcount::F<N>(r.w));
 }
@@ -142,6 +150,7 @@ V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::
                                    opcount::I<N> layer = opcount::I<N>(0)) {
   opcount::tick(opcount::kTexLookup, N);
   opcount::tick(opcount::kTexel, N);
+  opcount::tick(opcount::kTexNearest, N);  // a fetch: one texel, no filtering
   const V4<emu::F32<N>> r = texelFetchLanes(s, x.x, y.x, level, layer.x);
   return V4<opcount::F<N>>(opcount::F<N>(r.x), opcount::F<N>(r.y), opcount::F<N>(r.z), opcount::F<N>(r.w));
 }
@@ -150,6 +159,7 @@ void uintFetchLanes(const USampler2DArray& s, opcount::I<N> x, opcount::I<N> y, 
                     opcount::U<N>& b, opcount::U<N>& c, opcount::U<N>& d) {
   opcount::tick(opcount::kTexLookup, N);
   opcount::tick(opcount::kTexel, N);
+  opcount::tick(opcount::kTexNearest, N);  // a fetch: one texel, no filtering
   emu::U32<N> ra, rb, rc, rd;
   uintFetchLanes(s, x.x, y.x, layer.x, level, ra, rb, rc, rd);
   a.x = ra, b.x = rb, c.x = rc, d.x = rd;

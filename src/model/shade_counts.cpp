@@ -1,0 +1,72 @@
+#include "model/shade_counts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "emu/fpenv.h"
+#include "inputs/env_sampling.h"
+#include "inputs/material.h"
+#include "lanes/instantiate.h"
+#include "passes/visibility.h"
+
+// The shared shading source once more, with counted 8-lane types (as lanes/instantiate.h does per lane type).
+namespace shadetwin::shade::counted {
+namespace {
+using Float = opcount::F<8>;
+using Int = opcount::I<8>;
+using Uint = opcount::U<8>;
+using Mask = opcount::M<8>;
+using namespace ::shadetwin::shade;
+using ::shadetwin::shade::select;
+using ::shadetwin::shade::floatBitsToUint;
+using ::shadetwin::shade::uintBitsToFloat;
+using ::shadetwin::shade::mulHi;
+using ::std::int32_t;
+using ::std::uint32_t;
+inline constexpr int kLanes = 8;
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include "shade/all.inl"
+#pragma GCC diagnostic pop
+}  // namespace
+}  // namespace shadetwin::shade::counted
+
+namespace shadetwin {
+namespace counted_pass {
+#define SHADE_EMU_NS counted
+#define SHADE_EMU_F opcount::F<8>
+#define SHADE_EMU_U opcount::U<8>
+#define SHADE_EMU_I opcount::I<8>
+#define SHADE_EMU_M opcount::M<8>
+#define SHADE_EMU_ENTRY shadeCounted
+#include "passes/shade_emu_body.inl"
+}  // namespace counted_pass
+
+namespace model {
+
+PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                          const VisibilityImage* vis, std::vector<float>* out) {
+  std::vector<float> image;
+  PassCounts c;
+  tbb::task_arena one(1);  // the counters are per thread: one thread does all the work
+  one.execute([&] {
+    opcount::counts = {};
+    counted_pass::shadeCounted(scene, g, in, dev, image, vis);
+    for (int k = 0; k < opcount::kKinds; ++k) c.ticks[size_t(k)] = opcount::counts[size_t(k)];
+  });
+  const uint64_t pixels = uint64_t(g.width) * g.height;
+  c.invocations = (pixels + 7) / 8 * 8;
+  c.bytesRead = pixels * uint64_t(kGbufFloats) * 4;
+  c.bytesWritten = pixels * 16;
+  if (out) *out = std::move(image);
+  return c;
+}
+
+}  // namespace model
+}  // namespace shadetwin
