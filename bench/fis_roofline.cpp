@@ -1,5 +1,5 @@
 // Roofline of the FIS shading pass (issue 4, item 8): operations and texel reads per pixel of the
-// shared shade_fis.h as executed (counted lane types, bench/op_count.h) against this machine's
+// shared shade_fis.h as executed (counted lane types, model/op_count.h) against this machine's
 // measured peak for the same operations (8 independent mul + add chains on 16-lane vectors, no FMA:
 // the exactness contract forbids contraction) and the emulator's own time for the pass.
 // Results and the derived roofline: docs/RESULTS.md.
@@ -17,27 +17,7 @@
 #include "lanes/instantiate.h"
 #include "scene/scene.h"
 
-// The shared shading source once more, with counted 8-lane types (as instantiate.h does per lane type).
-namespace shadetwin::shade::counted {
-namespace {
-using Float = opcount::F<8>;
-using Int = opcount::I<8>;
-using Uint = opcount::U<8>;
-using Mask = opcount::M<8>;
-using namespace ::shadetwin::shade;
-using ::shadetwin::shade::select;
-using ::shadetwin::shade::floatBitsToUint;
-using ::shadetwin::shade::uintBitsToFloat;
-using ::shadetwin::shade::mulHi;
-using ::std::int32_t;
-using ::std::uint32_t;
-inline constexpr int kLanes = 8;
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include "shade/all.inl"
-#pragma GCC diagnostic pop
-}  // namespace
-}  // namespace shadetwin::shade::counted
+#include "model/counted.h"
 
 namespace {
 using namespace shadetwin;

@@ -15,27 +15,7 @@
 #include "lanes/instantiate.h"
 #include "passes/visibility.h"
 
-// The shared shading source once more, with counted 8-lane types (as lanes/instantiate.h does per lane type).
-namespace shadetwin::shade::counted {
-namespace {
-using Float = opcount::F<8>;
-using Int = opcount::I<8>;
-using Uint = opcount::U<8>;
-using Mask = opcount::M<8>;
-using namespace ::shadetwin::shade;
-using ::shadetwin::shade::select;
-using ::shadetwin::shade::floatBitsToUint;
-using ::shadetwin::shade::uintBitsToFloat;
-using ::shadetwin::shade::mulHi;
-using ::std::int32_t;
-using ::std::uint32_t;
-inline constexpr int kLanes = 8;
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include "shade/all.inl"
-#pragma GCC diagnostic pop
-}  // namespace
-}  // namespace shadetwin::shade::counted
+#include "model/counted.h"
 
 namespace shadetwin {
 namespace counted_pass {
