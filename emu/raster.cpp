@@ -19,6 +19,7 @@
 
 #include "emu/fpenv.h"
 #include "emu/lanes.h"
+#include "emu/x86_float.h"
 
 namespace emu {
 
@@ -119,14 +120,6 @@ WinVertex toWindow(bool fused, const ClipVertex& cv, int nv, float sx, float tx,
   return w;
 }
 
-inline float rmin(float a, float b) { return a < b ? a : b; }  // minps: NaN in a gives b
-inline float rmax(float a, float b) { return a > b ? a : b; }
-
-int32_t roundIntRne(float x) {  // cvtps2dq: round to nearest even, INT_MIN out of range
-  if (!(x > -2147483904.0f && x < 2147483648.0f)) return INT_MIN;
-  return int32_t(std::nearbyint(x));
-}
-
 // SwiftShader's projection: w = 0 becomes +-1 (the bits of w OR those of 1.0), rhw = 1 / w, then
 // X = rint(X0xF + (x rhw) WxF) with X0xF = X0 2^b - 2^(b-1), WxF = W 2^b (Renderer's DrawData).
 RVertex toReactor(const ClipVertex& cv, int nv, int bits, float W, float X0, float H, float Y0) {
@@ -140,8 +133,8 @@ RVertex toReactor(const ClipVertex& cv, int nv, int bits, float W, float X0, flo
   RVertex r;
   r.cy = cv.c[1], r.cw = cv.c[3];
   r.rhw = 1.0f / w;
-  r.X = roundIntRne(X0xF + (cv.c[0] * r.rhw) * WxF);
-  r.Y = roundIntRne(Y0xF + (cv.c[1] * r.rhw) * HxF);
+  r.X = x86::cvtps2dq(X0xF + (cv.c[0] * r.rhw) * WxF);
+  r.Y = x86::cvtps2dq(Y0xF + (cv.c[1] * r.rhw) * HxF);
   r.z = cv.c[2] * r.rhw;
   for (int k = 0; k < nv; ++k) r.v[k] = cv.v[k];
   return r;
@@ -317,15 +310,13 @@ bool setupTriangleReactor(const DeviceProfile& dev, const Framebuffer& fb, const
   };
   {
     const float y0 = v0->cy, y1 = v1->cy, y2 = v2->cy;
-    auto mn = [](float a, float b) { return a < b ? a : b; };  // minss
-    const float yMin = mn(mn(y0, y1), y2);
+    const float yMin = x86::minps(x86::minps(y0, y1), y2);
     rotate1(yMin == y1);
     rotate2(yMin == y2);
   }
   {
     const float w0 = v0->cw, w1 = v1->cw, w2 = v2->cw;
-    auto mx = [](float a, float b) { return a > b ? a : b; };  // maxss
-    const float wMax = mx(mx(w0, w1), w2);
+    const float wMax = x86::maxps(x86::maxps(w0, w1), w2);
     rotate1(wMax == w1);
     rotate2(wMax == w2);
   }
@@ -583,8 +574,8 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
       const float F = float(1 << bits);
       for (int i = 0; i < n; ++i) {
         const float rhw = cv[i].c[3] != 0.0f ? 1.0f / cv[i].c[3] : 1.0f;
-        PX[i] = roundIntRne((sx * F - F / 2) + (cv[i].c[0] * rhw) * (sx * F));
-        PY[i] = roundIntRne((sy * F - F / 2) + (cv[i].c[1] * rhw) * (sy * F));
+        PX[i] = x86::cvtps2dq((sx * F - F / 2) + (cv[i].c[0] * rhw) * (sx * F));
+        PY[i] = x86::cvtps2dq((sy * F - F / 2) + (cv[i].c[1] * rhw) * (sy * F));
       }
       for (int i = 1; i + 1 < n; ++i) {
         const int64_t X[3] = {PX[0], PX[i], PX[i + 1]}, Y[3] = {PY[0], PY[i], PY[i + 1]};
@@ -692,7 +683,7 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
               xr[i] = float(qx) + s->xq[i & 1], yr[i] = float(qy) + s->yq[i >> 1];
               const float D = s->z.a0 + yr[i] * s->z.dady;
               const float z = D + xr[i] * s->z.dadx;
-              q.z[i] = rmin(rmax(z, 0.0f), 1.0f);  // depth clamp to the [0, 1] range of a D32F buffer
+              q.z[i] = x86::minps(x86::maxps(z, 0.0f), 1.0f);  // depth clamp to the [0, 1] range of a D32F buffer
             } else {
               q.z[i] = interp(fused, s->z, px, py);
             }

@@ -2,9 +2,9 @@
 // (read with the project's search tool, not copied): see emu/sampler_reactor.h and docs/DESIGN.md s3.
 #include "emu/sampler_reactor.h"
 
-#include <climits>
+#include "emu/x86_float.h"
+
 #include <cmath>
-#include <algorithm>
 #include <cstring>
 
 namespace emu::reactor {
@@ -17,10 +17,6 @@ float fromBits(uint32_t b) {
 }
 const float kJustUnderOne = fromBits(0x3F7FFFFFu);  // SamplerCore::address: oneBits
 
-int32_t roundInt(float x) {  // cvtps2dq under round-to-nearest-even
-  if (!(x > -2147483904.0f && x < 2147483648.0f)) return INT_MIN;
-  return int32_t(std::nearbyint(x));
-}
 int32_t mini(int32_t a, int32_t b) { return a < b ? a : b; }
 int32_t maxi(int32_t a, int32_t b) { return a > b ? a : b; }
 uint16_t mulHigh(uint16_t a, uint16_t b) { return uint16_t((uint32_t(a) * b) >> 16); }
@@ -28,12 +24,7 @@ uint16_t mulHigh(uint16_t a, uint16_t b) { return uint16_t((uint32_t(a) * b) >> 
 
 float frac(float x) {
   const float r = x - std::floor(x);
-  return rmin(r, kJustUnderOne);
-}
-
-int32_t truncInt(float x) {
-  if (!(x > -2147483904.0f && x < 2147483648.0f)) return INT_MIN;
-  return int32_t(x);
+  return x86::minps(r, kJustUnderOne);
 }
 
 Lod selectLod(const Texture& t, const SamplerDesc& s, float lod) {
@@ -45,13 +36,13 @@ Lod selectLod(const Texture& t, const SamplerDesc& s, float lod) {
   // 16-bit mip blend with weight 0 on one-level RGBA8 views, verify texture --seeds 30).
   if (last == 0 && s.magFilter == s.minFilter) minLod = maxLod = 0.0f;
   float l = minLod == maxLod ? minLod : lod + s.lodBias;
-  l = rmax(l, minLod);
-  l = rmin(l, maxLod);
+  l = x86::maxps(l, minLod);
+  l = x86::minps(l, maxLod);
   Lod r{l, 0, 0, 0.0f};
   if (s.mipmapMode == MipmapMode::Nearest) {
-    r.l0 = r.l1 = mini(roundInt(l), last);
+    r.l0 = r.l1 = mini(x86::cvtps2dq(l), last);
   } else {
-    const int32_t i = truncInt(l);
+    const int32_t i = x86::cvttps2dq(l);
     r.l0 = mini(i, last);
     r.l1 = mini(i + 1, last);
     r.f = frac(l);
@@ -63,12 +54,12 @@ Axis addressFloat(float u, int32_t size, AddressMode mode, bool pointFilter, boo
   float c = u;
   switch (mode) {
     case AddressMode::ClampToEdge:
-      c = rmin(rmax(c, 0.0f), kJustUnderOne);
+      c = x86::minps(x86::maxps(c, 0.0f), kJustUnderOne);
       break;
     case AddressMode::MirroredRepeat: {  // 2 |u/2 - rint(u/2)|, below 1
       const float h = c * 0.5f;
       c = 2.0f * std::fabs(h - std::nearbyint(h));
-      c = rmin(c, kJustUnderOne);
+      c = x86::minps(c, kJustUnderOne);
       break;
     }
     case AddressMode::Repeat:
@@ -78,12 +69,12 @@ Axis addressFloat(float u, int32_t size, AddressMode mode, bool pointFilter, boo
   c = c * float(size);
   Axis r{};
   if (pointFilter) {  // FILTER_POINT: coordinates are in [0, size), so the cast is the floor
-    r.i0 = r.i1 = truncInt(c);
+    r.i0 = r.i1 = x86::cvttps2dq(c);
     return r;
   }
   c = c - (offset ? 0.5f : 0.0f);
   const float fl = std::floor(c);
-  r.i0 = truncInt(fl);
+  r.i0 = x86::cvttps2dq(fl);
   r.f = c - fl;
   r.i1 = r.i0 + (offset ? 1 : 0);
   if (mode == AddressMode::Repeat) {
@@ -99,16 +90,16 @@ Axis addressFloat(float u, int32_t size, AddressMode mode, bool pointFilter, boo
 uint16_t address16(float u, AddressMode mode) {
   switch (mode) {
     case AddressMode::ClampToEdge:
-      return uint16_t(truncInt(rmin(rmax(u, 0.0f), 65535.0f / 65536.0f) * 65536.0f));
+      return uint16_t(x86::cvttps2dq(x86::minps(x86::maxps(u, 0.0f), 65535.0f / 65536.0f) * 65536.0f));
     case AddressMode::MirroredRepeat: {
-      int32_t c = truncInt(u * 65536.0f);
+      int32_t c = x86::cvttps2dq(u * 65536.0f);
       const int32_t m = int32_t(uint32_t(c) << 15) >> 31;  // bit 16: an odd period runs backwards
       return uint16_t(c ^ m);
     }
     case AddressMode::Repeat:
       break;
   }
-  return uint16_t(truncInt(u * 65536.0f));
+  return uint16_t(x86::cvttps2dq(u * 65536.0f));
 }
 
 namespace {
@@ -162,7 +153,7 @@ Texel4 sampleUnorm16(const Texture& t, const SamplerDesc& s, const Lod& L, uint3
   Short4 c = sampleLevel16(t, s, L.l0, layer, u, v, point, halfMask);
   if (s.mipmapMode == MipmapMode::Linear) {
     const Short4 cc = sampleLevel16(t, s, L.l1, layer, u, v, point, halfMask);
-    const uint16_t utri = uint16_t(truncInt(L.lod * 65536.0f)), rest = uint16_t(~utri);
+    const uint16_t utri = uint16_t(x86::cvttps2dq(L.lod * 65536.0f)), rest = uint16_t(~utri);
     for (size_t k = 0; k < 4; ++k) c[k] = uint16_t(mulHigh(c[k], rest) + mulHigh(cc[k], utri));
   }
   const float scale = 1.0f / float(0xFF00);

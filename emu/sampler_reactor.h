@@ -10,14 +10,8 @@
 
 namespace emu::reactor {
 
-/// Reactor's Min/Max (minps/maxps, or a select on an ordered compare): NaN in the first operand
-/// returns the second.
-inline float rmin(float a, float b) { return a < b ? a : b; }
-inline float rmax(float a, float b) { return a > b ? a : b; }
-/// Reactor's Frac: x - floor(x), clamped below 1 (a NaN result becomes the constant just under 1).
+/// Reactor's Frac: x - floor(x), clamped below 1 with minps (a NaN result becomes the constant just under 1).
 float frac(float x);
-/// cvttps2dq: truncation, INT_MIN for NaN and out of range.
-int32_t truncInt(float x);
 
 /// The LOD after SamplerCore::sampleTexture: lod + sampler bias, clamped to [minLod, maxLod] (both
 /// first clamped to [0, kMaxTextureLod] by vk::Sampler), then the level(s): linear mip trunc(lod) and

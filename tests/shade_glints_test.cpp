@@ -35,6 +35,20 @@ std::filesystem::path dir() {
   return d;
 }
 
+// A test environment (W x H RGBA) written as <name>.exr in the test folder; returns its path.
+std::string writeEnvironment(const std::string& name, uint32_t W, uint32_t H, const std::vector<float>& env) {
+  const std::string path = (dir() / (name + ".exr")).string();
+  shadetwin::writeExr(path, W, H, env);
+  return path;
+}
+
+// A scene file <name>.json holding `text`, loaded.
+shadetwin::Scene sceneFromText(const std::string& name, const std::string& text) {
+  const std::string path = (dir() / (name + ".json")).string();
+  std::ofstream(path) << text;
+  return shadetwin::loadScene(path);
+}
+
 // G x D per covered pixel with F G outside (the technique's model), the kernel's frame and footprint
 // (as sweep --technique glints forms them), away from the silhouette (cos_o >= 0.5: the table has no
 // horizon); -1 elsewhere. RGB per pixel.
@@ -80,8 +94,7 @@ TEST(ShadeGlints, KernelAgreesWithGxdOnABinCentredMapAndConvergesWithTheDegree) 
       p[0] = float(0.4 + 0.2 * d.y + 3.0 * blob), p[1] = float(0.45 + 0.25 * d.y + 2.0 * blob), p[2] = float(0.6 + 0.3 * d.y + 0.8 * blob);
       p[3] = 1.0f;
     }
-  const std::string envPath = (dir() / "env.exr").string(), mapPath = (dir() / "map.exr").string();
-  shadetwin::writeExr(envPath, W, H, env);
+  const std::string envPath = writeEnvironment("env", W, H, env), mapPath = (dir() / "map.exr").string();
   // The map: 8 x 8 texels of 6 bin centres (rings 0-3, sectors on both sides, so components go negative).
   const shadetwin::NdfBinningSpec bins{9, 32, 40.0f * 3.14159265f / 180.0f};
   const uint32_t chosen[6][2] = {{0, 3}, {1, 12}, {2, 20}, {3, 28}, {1, 0}, {2, 9}};
@@ -103,9 +116,7 @@ TEST(ShadeGlints, KernelAgreesWithGxdOnABinCentredMapAndConvergesWithTheDegree) 
     "glints": {"order": 8, "rings": 9, "sectors": 32, "theta_max": 40, "view_rings": 33, "view_sectors": 64},
     "materials": [{"name": "m", "glints": {"map": ")" << mapPath << R"(", "scale": 4, "sigma": 0.15}}],
     "objects": [{"mesh": "sphere", "material": "m"}]})";
-  const std::string scenePath = (dir() / "scene.json").string();
-  std::ofstream(scenePath) << json.str();
-  shadetwin::Scene scene = shadetwin::loadScene(scenePath);
+  shadetwin::Scene scene = sceneFromText("scene", json.str());
   const emu::DeviceProfile& dev = emu::lavapipeProfile();
   std::ostringstream quiet;
   const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);
@@ -137,8 +148,7 @@ TEST(ShadeGlints, HardCasesStayFiniteAndNonNegative) {
   for (size_t i = 3; i < env.size(); i += 4) env[i] = 1.0f;
   float* sun = &env[4 * (size_t(9) * W + 40)];
   sun[0] = sun[1] = sun[2] = 30000.0f;
-  const std::string envPath = (dir() / "sun.exr").string();
-  shadetwin::writeExr(envPath, W, H, env);
+  const std::string envPath = writeEnvironment("sun", W, H, env);
   for (const char* variant : {"one-texel", "many-tiles"}) {
     const bool tiny = std::string(variant) == "one-texel";
     std::ostringstream json;
@@ -147,9 +157,7 @@ TEST(ShadeGlints, HardCasesStayFiniteAndNonNegative) {
       "glints": {"view_rings": 17, "view_sectors": 32},
       "materials": [{"name": "m", "glints": {"map": "flakes", "size": )" << (tiny ? 64 : 4) << R"(, "scale": )" << (tiny ? 1 : 4096)
          << R"(, "sigma": 0.005, "spread": 0.4}}], "objects": [{"mesh": "sphere", "material": "m"}]})";
-    const std::string scenePath = (dir() / (std::string(variant) + ".json")).string();
-    std::ofstream(scenePath) << json.str();
-    shadetwin::Scene scene = shadetwin::loadScene(scenePath);
+    shadetwin::Scene scene = sceneFromText(variant, json.str());
     scene.glintOrder = 60;
     std::ostringstream quiet;
     const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);
@@ -194,17 +202,14 @@ TEST(ShadeGlints, AdaptiveBandLimitIsTheSmallerOfTheLobesAndTheLightings) {
       p[0] = 0.3f + 0.02f * float(y), p[1] = 0.4f, p[2] = 0.5f + 0.01f * float(x % 7), p[3] = 1.0f;
     }
   env[4 * (size_t(8) * W + 20)] = 5000.0f;
-  const std::string envPath = (dir() / "bands_env.exr").string();
-  shadetwin::writeExr(envPath, W, H, env);
+  const std::string envPath = writeEnvironment("bands_env", W, H, env);
   std::ostringstream json;
   json << R"({"image": {"width": 40, "height": 40}, "camera": {"eye": [0, 0.6, 3], "target": [0, 0, 0], "fov": 30},
     "environment": {"file": ")" << envPath << R"("}, "technique": "glints",
     "glints": {"order": 12, "view_rings": 9, "view_sectors": 16},
     "materials": [{"name": "m", "glints": {"map": "flakes", "size": 32, "scale": 2, "sigma": 0.05, "spread": 0.3}}],
     "objects": [{"mesh": "sphere", "material": "m"}]})";
-  const std::string scenePath = (dir() / "bands.json").string();
-  std::ofstream(scenePath) << json.str();
-  const shadetwin::Scene scene = shadetwin::loadScene(scenePath);
+  const shadetwin::Scene scene = sceneFromText("bands", json.str());
   const emu::DeviceProfile& dev = emu::lavapipeProfile();
   std::ostringstream quiet;
   const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);
@@ -252,17 +257,14 @@ TEST(ShadeGlints, GxdTechniqueImageIsEachPixelsGxdOverTheKernelsBackground) {
   const uint32_t W = 64, H = 32;
   std::vector<float> env(size_t(W) * H * 4);
   for (size_t i = 0; i < env.size(); ++i) env[i] = i % 4 == 3 ? 1.0f : 0.2f + 0.01f * float((i * 13) % 50);
-  const std::string envPath = (dir() / "gxd_env.exr").string();
-  shadetwin::writeExr(envPath, W, H, env);
+  const std::string envPath = writeEnvironment("gxd_env", W, H, env);
   std::ostringstream json;
   json << R"({"image": {"width": 32, "height": 24}, "camera": {"eye": [0, 0.6, 3], "target": [0, 0, 0], "fov": 30},
     "environment": {"file": ")" << envPath << R"(", "intensity": 1.5}, "technique": "glints-gxd",
     "glints": {"order": 6, "view_rings": 5, "view_sectors": 8, "gxd_samples": 8},
     "materials": [{"name": "m", "glints": {"map": "scratches", "size": 32, "scale": 2, "sigma": 0.1}}],
     "objects": [{"mesh": "sphere", "material": "m"}]})";
-  const std::string scenePath = (dir() / "gxd.json").string();
-  std::ofstream(scenePath) << json.str();
-  shadetwin::Scene scene = shadetwin::loadScene(scenePath);
+  shadetwin::Scene scene = sceneFromText("gxd", json.str());
   const emu::DeviceProfile& dev = emu::lavapipeProfile();
   std::ostringstream quiet;
   const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);
@@ -311,17 +313,14 @@ TEST(ShadeGlints, RotatedLobeTableConvergesToTheRecurrencesWithItsResolution) {
       float* p = &env[4 * (size_t(y) * W + x)];
       p[0] = 0.5f + 0.4f * std::sin(0.2f * float(x)), p[1] = 0.3f + 0.02f * float(y), p[2] = 0.6f, p[3] = 1.0f;
     }
-  const std::string envPath = (dir() / "lobe_env.exr").string();
-  shadetwin::writeExr(envPath, W, H, env);
+  const std::string envPath = writeEnvironment("lobe_env", W, H, env);
   std::ostringstream json;
   json << R"({"image": {"width": 48, "height": 48}, "camera": {"eye": [0, 0.6, 3], "target": [0, 0, 0], "fov": 30},
     "environment": {"file": ")" << envPath << R"("}, "technique": "glints",
     "glints": {"order": 10, "view_rings": 9, "view_sectors": 16},
     "materials": [{"name": "m", "glints": {"map": "bumps", "size": 32, "scale": 2, "sigma": 0.15, "spread": 0.3}}],
     "objects": [{"mesh": "sphere", "material": "m"}]})";
-  const std::string scenePath = (dir() / "lobe.json").string();
-  std::ofstream(scenePath) << json.str();
-  shadetwin::Scene scene = shadetwin::loadScene(scenePath);
+  shadetwin::Scene scene = sceneFromText("lobe", json.str());
   const emu::DeviceProfile& dev = emu::lavapipeProfile();
   std::ostringstream quiet;
   const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);
@@ -366,17 +365,14 @@ TEST(ShadeGlints, FlatMapIsTheSmoothMicrofacetUpToTheFirstRingsCentre) {
       p[0] = float(0.3 + 0.2 * d.y + 6.0 * blob), p[1] = float(0.35 + 0.2 * d.y + 4.0 * blob), p[2] = float(0.5 + 0.2 * d.y + blob);
       p[3] = 1.0f;
     }
-  const std::string envPath = (dir() / "flat_env.exr").string();
-  shadetwin::writeExr(envPath, W, H, env);
+  const std::string envPath = writeEnvironment("flat_env", W, H, env);
   std::ostringstream json;
   json << R"({"image": {"width": 32, "height": 32}, "camera": {"eye": [0, 0.6, 3], "target": [0, 0, 0], "fov": 30},
     "environment": {"file": ")" << envPath << R"("}, "technique": "glints",
     "glints": {"order": 16, "view_rings": 33, "view_sectors": 64},
     "materials": [{"name": "m", "glints": {"map": "flat", "size": 16, "scale": 2, "sigma": 0.1}}],
     "objects": [{"mesh": "sphere", "material": "m"}]})";
-  const std::string scenePath = (dir() / "flat.json").string();
-  std::ofstream(scenePath) << json.str();
-  shadetwin::Scene scene = shadetwin::loadScene(scenePath);
+  shadetwin::Scene scene = sceneFromText("flat", json.str());
   const emu::DeviceProfile& dev = emu::lavapipeProfile();
   std::ostringstream quiet;
   const shadetwin::EnvironmentMap e = shadetwin::loadEnvironment(envPath, quiet);

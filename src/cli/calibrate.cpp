@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iomanip>
@@ -117,7 +116,6 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     double t = 0.0;
     for (;;) {
       t = timeRun(p, s, count);
-      if (std::getenv("SHADETWIN_CALIBRATE_TRACE")) log << "    kind " << kind << " iters " << p.iters << ": " << t << " s\n";
       if (t >= target || p.iters >= (1u << 24)) break;
       p.iters = uint32_t(std::min<double>(double(1u << 24), double(p.iters) * std::max(2.0, 1.2 * target / std::max(t, 1e-6))));
     }
@@ -130,7 +128,6 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   d.verified = true;
   d.cores = int(std::max(1u, std::thread::hardware_concurrency()));
   d.lanes = d.device == "swiftshader" ? 4 : name.find("256 bits") != std::string::npos ? 8 : 4;
-  using model::OpClass;
   auto& ops = d.opsPerSecond;
   ops[model::kFAdd] = rate(kFAddK, 32.0, nearest->handle(), 1.0e-3f, 0.0f);
   ops[model::kFMul] = rate(kFMulK, 32.0, nearest->handle(), 1.0000001f, 0.0f);

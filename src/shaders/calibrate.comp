@@ -23,7 +23,7 @@ layout(std430, set = 0, binding = 2) writeonly buffer Dst { vec4 dst[]; };
 // (SwiftShader's Subzero takes minutes on the whole shader).
 layout(constant_id = 0) const uint KIND = 0u;
 layout(push_constant) uniform Push {
-  uint kind, iters, count, pad;
+  uint kind, iters, count, pad;  // kind: the host's record of the pipeline (the shader reads KIND)
   float c, lod, step, pad2;
 } pc;
 
