@@ -55,6 +55,9 @@ TEST(DeviceDesc, RoundTripIsLossless) {
   EXPECT_EQ(e.opsPerSecond, d.opsPerSecond);
   EXPECT_EQ(e.lookupsPerSecond, d.lookupsPerSecond);
   EXPECT_EQ(e.dispatchSeconds, d.dispatchSeconds);
+  EXPECT_EQ(e.trianglesPerSecond, d.trianglesPerSecond);
+  EXPECT_EQ(e.fragmentsPerSecond, d.fragmentsPerSecond);
+  EXPECT_EQ(e.attachmentBytesPerSecond, d.attachmentBytesPerSecond);
   std::remove(path.c_str());
 }
 

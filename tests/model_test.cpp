@@ -14,27 +14,32 @@ DeviceDesc device(bool overlap) {
   d.lookupsPerSecond = {4e8, 2e8, 1e8};
   d.bandwidthBytesPerSecond = 1e10;
   d.dispatchSeconds = 1e-4;
+  d.trianglesPerSecond = 1e7, d.fragmentsPerSecond = 1e9, d.attachmentBytesPerSecond = 1e10;
   d.unitsOverlap = overlap;
   return d;
 }
 
-TEST(Model, TicksAreEightLaneVectorsAndMaskLogicIsIntegerAlu) {
+TEST(Model, TicksBecomeLaneOperationsAndMaskLogicIsIntegerAlu) {
   PassCounts c;
-  c.ticks[opcount::kFAdd] = 10;
-  c.ticks[opcount::kMaskOp] = 3;
-  c.ticks[opcount::kIAlu] = 2;
+  std::array<uint64_t, opcount::kKinds> t{};
+  t[opcount::kFAdd] = 10, t[opcount::kMaskOp] = 3, t[opcount::kIAlu] = 2, t[opcount::kTexBilinear] = 16;
+  addTicks(c, t, 8);  // 8-lane vectors; texture kinds are per lane already
   const auto ops = scalarOps(c);
   EXPECT_EQ(ops[kFAdd], 80.0);
   EXPECT_EQ(ops[kIAlu], 40.0);
   EXPECT_EQ(ops[kFMul], 0.0);
+  EXPECT_EQ(c.ops[opcount::kTexBilinear], 16.0);
+  addTicks(c, t, 1);  // one-lane runs (vertex and fragment stages) add their ticks as they are
+  EXPECT_EQ(scalarOps(c)[kFAdd], 90.0);
 }
 
 TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   PassCounts c;
-  c.ticks[opcount::kFMul] = 125000;          // 1e6 scalar fmul: 1 ms at 1e9/s
-  c.ticks[opcount::kIAlu] = 250000;          // 2e6 integer ops: 1 ms at 2e9/s
-  c.ticks[opcount::kTexTrilinear] = 300000;  // 3 ms at 1e8/s
-  c.ticks[opcount::kTexNearest] = 400000;    // 1 ms at 4e8/s
+  c.dispatches = 1;
+  c.ops[opcount::kFMul] = 1e6;               // 1 ms at 1e9/s
+  c.ops[opcount::kIAlu] = 2e6;               // 1 ms at 2e9/s
+  c.ops[opcount::kTexTrilinear] = 300000;    // 3 ms at 1e8/s
+  c.ops[opcount::kTexNearest] = 400000;      // 1 ms at 4e8/s
   c.bytesRead = 10000000, c.bytesWritten = 5000000;  // 1.5 ms at 1e10 B/s
   const Prediction s = predict(c, device(false));
   EXPECT_DOUBLE_EQ(s.aluSeconds, 2e-3);
@@ -47,6 +52,13 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   EXPECT_EQ(g.bound, "texture");
   PassCounts idle;  // nothing to do: the launch bounds it
   EXPECT_EQ(predict(idle, device(true)).bound, "launch");
+  idle.dispatches = 12;  // a launch per dispatch (a MIP chain's levels, a draw per object)
+  EXPECT_DOUBLE_EQ(predict(idle, device(false)).launchSeconds, 12e-4);
+  PassCounts raster;  // triangles, covered pixels and render-target bytes at the raster rates
+  raster.dispatches = 1, raster.triangles = 20000, raster.fragments = 3000000, raster.attachmentBytes = 50000000;
+  const Prediction r = predict(raster, device(false));
+  EXPECT_DOUBLE_EQ(r.rasterSeconds, 2e-3 + 3e-3 + 5e-3);
+  EXPECT_EQ(r.bound, "raster");
 }
 
 }  // namespace

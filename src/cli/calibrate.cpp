@@ -12,6 +12,10 @@
 #include <thread>
 #include <vector>
 
+#include "emu/device_profile.h"
+#include "passes/passes_vk.h"
+#include "passes/shadow.h"
+#include "scene/scene.h"
 #include "vk/context.h"
 
 namespace shadetwin {
@@ -152,6 +156,57 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     d.bandwidthBytesPerSecond = double(copyVec4s) * 32.0 / std::max(t - dispatch, 1e-9);
   }
   d.dispatchSeconds = dispatch;
+  {  // Raster rates from synthetic depth-only draws through the shadow pipeline (generated geometry, not a scene):
+     // two zero-area triangles (nothing covered: the targets' clear and copy-out alone), many tiny triangles into small maps
+     // (triangle-bound) and two large triangles into large maps (coverage-bound). The emulator under the device's
+     // profile counts their triangles and covered pixels; each empty run's time (the same maps) is removed, and the two
+     // equations give the two rates.
+    const emu::DeviceProfile& prof = emu::profileForDevice(ctx.deviceName());
+    struct Run { double seconds, triangles, fragments; };
+    auto rasterRun = [&](Mesh mesh, uint32_t size, uint32_t maps) {
+      Scene sc;
+      sc.meshes.push_back(std::move(mesh));
+      Object o;
+      o.model = identity();
+      sc.objects.push_back(o);
+      const std::vector<Vec3> dirs(maps, Vec3{0.0f, 1.0f, 0.0f});
+      ShadowPassVk pass(ctx, sc, size);
+      std::vector<double> t;
+      for (int r = 0; r < 6; ++r) {
+        pass.run(dirs);
+        if (r) t.push_back(pass.lastMs * 1e-3);
+      }
+      std::sort(t.begin(), t.end());
+      ShadowStats st;
+      shadowEmu(sc, dirs, size, prof, &st);
+      return Run{t[2], double(st.raster.trianglesIn), double(st.raster.fragments)};
+    };
+    auto flat = [](Mesh m) {  // every vertex at the centre: zero-area triangles, the same bounds as a point
+      for (auto& p : m.positions) p = {0.0f, 0.0f, 0.0f};
+      m.positions.push_back({-1.0f, -1.0f, -1.0f});  // unused vertices keep the bounds of the original
+      m.positions.push_back({1.0f, 1.0f, 1.0f});
+      m.normals.resize(m.positions.size(), {0.0f, 1.0f, 0.0f});
+      m.tangents.resize(m.positions.size(), {1.0f, 0.0f, 0.0f, 1.0f});
+      m.uvs.resize(m.positions.size(), {0.0f, 0.0f});
+      return m;
+    };
+    const uint32_t smallSize = 32, smallMaps = opts.quick ? 4 : 16, bigSize = opts.quick ? 512 : 2048, bigMaps = opts.quick ? 4 : 8;
+    const Mesh sphere = makeSphere(opts.quick ? 128 : 256, opts.quick ? 64 : 128);
+    const Run a = rasterRun(sphere, smallSize, smallMaps), a0 = rasterRun(flat(makePlane()), smallSize, smallMaps);
+    const Run b = rasterRun(makePlane(), bigSize, bigMaps), b0 = rasterRun(flat(makePlane()), bigSize, bigMaps);
+    const double ta = std::max(a.seconds - a0.seconds, 1e-9), tb = std::max(b.seconds - b0.seconds, 1e-9);
+    // ta = a.triangles s_t + a.fragments s_f, the same for b: Cramer's rule, each cost kept positive.
+    const double det = a.triangles * b.fragments - b.triangles * a.fragments;
+    double st = (ta * b.fragments - tb * a.fragments) / det, sf = (a.triangles * tb - b.triangles * ta) / det;
+    if (!(st > 0)) st = ta / a.triangles;
+    if (!(sf > 0)) sf = tb / b.fragments;
+    d.trianglesPerSecond = 1.0 / st, d.fragmentsPerSecond = 1.0 / sf;
+    // The targets' clear + copy-out per byte (the large empty run less a launch).
+    d.attachmentBytesPerSecond = double(bigSize) * bigSize * 4 * bigMaps / std::max(b0.seconds - dispatch, 1e-9);
+    log << "  raster    " << a.triangles << " triangles + " << a.fragments << " pixels in " << ta * 1e3 << " ms; " << b.triangles
+        << " triangles + " << b.fragments << " pixels in " << tb * 1e3 << " ms; empty targets " << a0.seconds * 1e3 << " / "
+        << b0.seconds * 1e3 << " ms\n";
+  }
   hostCache(d.cacheLineBytes, d.cacheBytes);
   d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
                  std::to_string(d.cores) + " cores): microkernels of src/shaders/calibrate.comp only; cache from sysfs";
@@ -160,6 +215,8 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   for (int f = 0; f < model::kTexFilters; ++f)
     log << "  " << std::left << std::setw(10) << model::kTexFilterNames[f] << d.lookupsPerSecond[size_t(f)] / 1e6 << " Mlookup/s\n";
   log << "  bandwidth " << d.bandwidthBytesPerSecond / 1e9 << " GB/s\n  dispatch  " << d.dispatchSeconds * 1e6 << " us\n";
+  log << "  triangles " << d.trianglesPerSecond / 1e6 << " M/s\n  fragments " << d.fragmentsPerSecond / 1e6
+      << " M/s\n  targets   " << d.attachmentBytesPerSecond / 1e9 << " GB/s (clear + copy-out)\n";
   return d;
 }
 

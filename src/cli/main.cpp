@@ -118,7 +118,7 @@ int main(int argc, char** argv) {
   calibrate->add_flag("--quick", co.quick, "short runs (rough rates; for tests)");
   shadetwin::ModelOptions mo;
   auto* modelCmd = app.add_subcommand("model", "predict a pass's time on a device from its counted work and the device's "
-                                               "description (issue 19: the shading pass so far)");
+                                               "description, every pass of a frame; --validate against the software devices");
   modelCmd->add_option("--scene", mo.scene, "scene file");
   modelCmd->add_option("--technique", mo.technique, "shading technique (default: the scene's)");
   modelCmd->add_option("--device", mo.device, "device description devices/<D>.json: lavapipe, swiftshader, h100, h200");
@@ -126,7 +126,12 @@ int main(int argc, char** argv) {
   modelCmd->add_option("--width", mo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
   modelCmd->add_option("--height", mo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   modelCmd->add_option("--samples", mo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
-  modelCmd->add_option("--repeat", mo.repeat, "timed runs of the measured pass (median)")->check(CLI::Range(1, 100));
+  modelCmd->add_option("--repeat", mo.repeat, "timed runs of each measured pass (median)")->check(CLI::Range(1, 100));
+  modelCmd->add_flag("--validate", mo.validate, "every shipped scene x technique on every present software device, ending with "
+                                                "the mean and worst absolute error");
+  modelCmd->add_option("--scenes", mo.scenes, "--validate: scene files (default: every scenes/*.json)");
+  modelCmd->add_option("--devices-list", mo.devices, "--validate: software devices (default: lavapipe swiftshader)");
+  modelCmd->add_option("--csv", mo.csv, "--validate: write one row per pass to this CSV");
   auto* bench = app.add_subcommand("bench", "time passes on the emulator and on a Vulkan device in one run; last line: ratio emu/vulkan");
   bench->add_option("--scene", bo.scene, "scene file");
   bench->add_option("--passes", bo.passes, "comma-separated passes: gbuffer, shadow, shade");

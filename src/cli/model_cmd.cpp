@@ -2,72 +2,253 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <iomanip>
+#include <map>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <vector>
 
 #include "emu/device_profile.h"
 #include "inputs/environment.h"
+#include "inputs/glints.h"
+#include "inputs/material.h"
+#include "inputs/paraboloid.h"
+#include "inputs/sh_irradiance.h"
 #include "inputs/shade_inputs.h"
 #include "model/model.h"
+#include "passes/mips.h"
 #include "passes/passes_vk.h"
+#include "passes/visibility.h"
 #include "scene/scene.h"
+#include "util/timer.h"
 #include "vk/context.h"
 
 namespace shadetwin {
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? -1.0 : v[v.size() / 2];
+}
+
+// Every pass of the frame on the Vulkan device, as the Vulkan build runs it, each timed `repeat` times after a warm-up
+// run (median, submit to completion): the persistent passes through their lastMs, the technique inputs (built inside
+// one function each) through vk::DispatchLog.
+std::map<std::string, double> measurePasses(vk::Context& ctx, const Scene& scene, const emu::Texture& env, const ShadeInputs& in,
+                                            const GBuffer& g, const VisibilityImage* vis, uint32_t repeat) {
+  std::map<std::string, std::vector<double>> t;
+  for (uint32_t r = 0; r <= repeat; ++r) {
+    const bool keep = r > 0;  // run 0 warms up (pipelines, caches)
+    {
+      GbufferPassVk gp(ctx, scene);
+      gp.run();
+      if (keep) t["gbuffer"].push_back(gp.lastMs);
+    }
+    double mips = 0;
+    bool anyMips = false;
+    if (in.atlas) {
+      vk::DispatchLog pl;
+      const std::vector<float> atlas = paraboloidAtlasVulkan(ctx, env, scene.fisFaceSize);
+      vk::DispatchLog ml;
+      mipChainGpu(ctx, atlas, 2 * scene.fisFaceSize, scene.fisFaceSize, 1);
+      mips += ml.totalMs(), anyMips = true;
+      vk::DispatchLog sl;
+      shIrradianceVulkan(ctx, env);
+      if (keep && sl.ms.size() == 2) t["sh-project"].push_back(sl.ms[0]), t["sh-reduce"].push_back(sl.ms[1]);
+      if (keep) t["paraboloid"].push_back(pl.ms.empty() ? 0.0 : pl.ms[0]);
+    }
+    if (in.maps) {
+      const MaterialMapImages m = loadMaterialMaps(scene);
+      if (m.width > 1 || m.height > 1) {
+        vk::DispatchLog ml;
+        mipChainGpu(ctx, m.texels, m.width, m.height, m.layers);
+        mips += ml.totalMs(), anyMips = true;
+      }
+    }
+    if (keep && anyMips) t["mips"].push_back(mips);
+    if (in.glints) {
+      vk::DispatchLog gl;
+      glintLightingVulkan(ctx, env, in.glints->lightingSpec);
+      if (keep) t["glint-lighting"].push_back(gl.totalMs());
+    }
+    if (in.visibility) {
+      VisibilityPassVk vp(ctx, scene, in.visibility->settings.size);
+      VisibilityStats vt;
+      vk::DispatchLog dl;  // the fit's and the filter's dispatches (their uploads and read-backs are not the pass)
+      vp.run(g, *in.visibility, &vt);
+      if (keep) {
+        t["shadow"].push_back(vt.shadowMs);
+        if (!dl.ms.empty()) t["visibility-fit"].push_back(dl.ms[0]);
+        if (in.visibility->settings.filterRadius && dl.ms.size() > 1) t["visibility-filter"].push_back(dl.ms[1]);
+      }
+    }
+    if (scene.technique != "glints-gxd") {
+      ShadePassVk sp(ctx, scene, in);
+      sp.run(g, vis);
+      if (keep) t["shade"].push_back(sp.lastMs);
+    }
+  }
+  std::map<std::string, double> m;
+  for (auto& [k, v] : t) m[k] = median(v);
+  return m;
+}
+
+struct Row {
+  std::string scene, technique, device, pass, bound;
+  double predictedMs = 0, measuredMs = -1;
+};
+
+// One frame of `scene` modelled on `desc` (and measured on `ctx` when given); returns the rows, false in `same` when a
+// counted pass changed a bit.
+std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, const EnvironmentMap& env, const model::DeviceDesc& desc,
+                            vk::Context* ctx, const emu::DeviceProfile& dev, uint32_t repeat, std::ostream& log, bool& same) {
+  const model::FrameCounts fc = model::countFrame(scene, *env.texture, dev);
+  log << "counted passes: " << fc.identical << "/" << fc.compared << " output values bit-identical to the emulator's";
+  for (const std::string& d : fc.differing) log << " (differs: " << d << ")";
+  log << "\n";
+  same = same && fc.differing.empty() && fc.identical == fc.compared;
+  std::map<std::string, double> measured;
+  if (ctx) {
+    const ShadeInputs in = shadeInputsEmu(scene, *env.texture, dev);
+    const GBuffer g = gbufferEmu(scene, dev);
+    std::unique_ptr<VisibilityImage> vis;
+    if (in.visibility) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *in.visibility, dev));
+    measured = measurePasses(*ctx, scene, *env.texture, in, g, vis.get(), repeat);
+  }
+  std::vector<Row> rows;
+  double totalP = 0, totalM = 0;
+  for (const model::PassCounts& c : fc.passes) {
+    const model::Prediction p = model::predict(c, desc);
+    const auto ops = model::scalarOps(c);
+    const double inv = std::max(1.0, double(c.invocations));
+    Row r{sceneName, scene.technique, desc.device, c.pass, p.bound, p.seconds * 1e3, -1.0};
+    log << std::fixed << std::setprecision(2) << "  " << std::left << std::setw(18) << c.pass << std::right << " predicted "
+        << std::setw(9) << r.predictedMs << " ms (alu " << p.aluSeconds * 1e3 << ", texture " << p.textureSeconds * 1e3
+        << ", memory " << p.memorySeconds * 1e3 << ", raster " << p.rasterSeconds * 1e3 << ", launch " << p.launchSeconds * 1e3
+        << "; bound " << p.bound << ")";
+    if (auto it = measured.find(c.pass); it != measured.end()) {
+      r.measuredMs = it->second;
+      log << "  measured " << std::setw(9) << r.measuredMs << " ms  error " << std::showpos << std::setprecision(1)
+          << 100.0 * (r.predictedMs - r.measuredMs) / r.measuredMs << "%" << std::noshowpos;
+      totalM += r.measuredMs;
+    }
+    log << "\n" << std::setprecision(1) << "      per invocation:";
+    for (int k = 0; k < model::kOpClasses; ++k) log << " " << model::kOpClassNames[k] << " " << ops[size_t(k)] / inv;
+    log << "; lookups nearest " << c.ops[opcount::kTexNearest] / inv << " bilinear " << c.ops[opcount::kTexBilinear] / inv
+        << " trilinear " << c.ops[opcount::kTexTrilinear] / inv << "; " << c.invocations << " invocations, " << c.dispatches
+        << (c.triangles ? " draws" : " dispatches");
+    if (c.triangles) log << ", " << c.triangles << " triangles, " << c.fragments << " fragments, " << c.helperLanes << " helper lanes";
+    log << "\n";
+    totalP += r.predictedMs;
+    rows.push_back(r);
+  }
+  log << std::setprecision(2) << "  frame              predicted " << std::setw(9) << totalP << " ms";
+  if (ctx) log << "  measured " << std::setw(9) << totalM << " ms";
+  log << "\n";
+  return rows;
+}
+
+Scene sceneWith(const ModelOptions& o, const std::string& path, const std::string& technique) {
+  Scene scene = loadScene(path);
+  if (o.width) scene.width = o.width;
+  if (o.height) scene.height = o.height;
+  if (!technique.empty()) scene.technique = technique;
+  if (o.samples) scene.fisSamples = o.samples;
+  return scene;
+}
+
+bool isSoftware(const std::string& d) { return d == "lavapipe" || d == "swiftshader"; }
+
+}  // namespace
 
 int modelCommand(const ModelOptions& opts, std::ostream& log) {
-  Scene scene = loadScene(opts.scene);
-  if (opts.width) scene.width = opts.width;
-  if (opts.height) scene.height = opts.height;
-  if (!opts.technique.empty()) scene.technique = opts.technique;
-  if (opts.samples) scene.fisSamples = opts.samples;
-  const std::string descPath = opts.devicesDir + "/" + opts.device + ".json";
-  const model::DeviceDesc desc = model::loadDeviceDesc(descPath);
-  const bool software = opts.device == "lavapipe" || opts.device == "swiftshader";
-  // The counted pass runs under the device's profile (software) or lavapipe's (a GPU's profile is unverified).
-  std::unique_ptr<vk::Context> ctx;
-  if (software) ctx = std::make_unique<vk::Context>(vk::ContextOptions{opts.device == "lavapipe" ? "" : opts.device, false});
-  const emu::DeviceProfile& dev = ctx ? emu::profileForDevice(ctx->deviceName()) : emu::lavapipeProfile();
-  log << "model " << opts.scene << ": " << scene.width << "x" << scene.height << ", technique " << scene.technique
-      << "; device " << desc.device << " (" << descPath << ", " << (desc.verified ? "measured" : "public figures, unverified")
-      << ")\n";
-  std::ostringstream quiet;
-  const EnvironmentMap env = loadEnvironment(scene.environment, quiet);
-  const GBuffer g = gbufferEmu(scene, dev);
-  const ShadeInputs in = shadeInputsEmu(scene, *env.texture, dev);
-  std::vector<float> counted;
-  const model::PassCounts c = model::countShadePass(scene, g, in, dev, nullptr, &counted);
-  const std::vector<float> emuImage = shadeEmu(scene, g, in, dev);
-  size_t same = 0;
-  for (size_t i = 0; i < emuImage.size() && i < counted.size(); ++i) same += std::memcmp(&emuImage[i], &counted[i], 4) == 0;
-  log << "counted pass: " << same << "/" << emuImage.size() << " bit-identical to the emulator's\n";
-  const auto ops = model::scalarOps(c);
-  const double px = double(c.invocations);
-  log << std::fixed << std::setprecision(1) << "  per pixel:";
-  for (int k = 0; k < model::kOpClasses; ++k) log << " " << model::kOpClassNames[k] << " " << ops[size_t(k)] / px;
-  log << "; lookups nearest " << double(c.ticks[opcount::kTexNearest]) / px << " bilinear "
-      << double(c.ticks[opcount::kTexBilinear]) / px << " trilinear " << double(c.ticks[opcount::kTexTrilinear]) / px << "\n";
-  const model::Prediction p = model::predict(c, desc);
-  log << std::setprecision(2) << "  shade  predicted " << p.seconds * 1e3 << " ms (alu " << p.aluSeconds * 1e3 << ", texture "
-      << p.textureSeconds * 1e3 << ", memory " << p.memorySeconds * 1e3 << ", launch " << p.launchSeconds * 1e3 << "; bound "
-      << p.bound << ")";
-  if (ctx) {
-    ShadePassVk pass(*ctx, scene, in);
-    std::vector<double> t;
-    for (uint32_t r = 0; r <= opts.repeat; ++r) {  // run 0 warms up
-      pass.run(g);
-      if (r) t.push_back(pass.lastMs);
-    }
-    std::sort(t.begin(), t.end());
-    const double measured = t[t.size() / 2];
-    log << "  measured " << measured << " ms  error " << std::showpos << 100.0 * (p.seconds * 1e3 - measured) / measured
-        << std::noshowpos << "%";
+  if (!opts.validate) {
+    const Scene scene = sceneWith(opts, opts.scene, opts.technique);
+    const std::string descPath = opts.devicesDir + "/" + opts.device + ".json";
+    const model::DeviceDesc desc = model::loadDeviceDesc(descPath);
+    // The counted passes run under the device's profile (software) or lavapipe's (a GPU's profile is unverified).
+    std::unique_ptr<vk::Context> ctx;
+    if (isSoftware(opts.device)) ctx = std::make_unique<vk::Context>(vk::ContextOptions{opts.device == "lavapipe" ? "" : opts.device, false});
+    const emu::DeviceProfile& dev = ctx ? emu::profileForDevice(ctx->deviceName()) : emu::lavapipeProfile();
+    log << "model " << opts.scene << ": " << scene.width << "x" << scene.height << ", technique " << scene.technique << "; device "
+        << desc.device << " (" << descPath << ", " << (desc.verified ? "measured" : "public figures, unverified") << ")\n";
+    std::ostringstream quiet;
+    const EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+    bool same = true;
+    modelFrame(scene, opts.scene, env, desc, ctx.get(), dev, opts.repeat, log, same);
+    return same ? 0 : 1;
   }
-  log << "\n";
-  return same == emuImage.size() ? 0 : 1;
+  // --validate: every shipped scene x technique (the scene's own, and for the non-glint scenes every shading pass kind:
+  // fis, mirror, env, kdtree-mis) x every present software device.
+  std::vector<std::string> scenes = opts.scenes;
+  if (scenes.empty()) {
+    for (const auto& e : std::filesystem::directory_iterator("scenes"))
+      if (e.path().extension() == ".json") scenes.push_back(e.path().string());
+    std::sort(scenes.begin(), scenes.end());
+  }
+  const std::vector<std::string> devices = opts.devices.empty() ? std::vector<std::string>{"lavapipe", "swiftshader"} : opts.devices;
+  std::vector<Row> all;
+  bool same = true;
+  for (const std::string& d : devices) {
+    if (!isSoftware(d)) throw std::runtime_error("model --validate: " + d + " is not a software device present here");
+    const model::DeviceDesc desc = model::loadDeviceDesc(opts.devicesDir + "/" + d + ".json");
+    vk::Context ctx(vk::ContextOptions{d == "lavapipe" ? "" : d, false});
+    const emu::DeviceProfile& dev = emu::profileForDevice(ctx.deviceName());
+    for (const std::string& path : scenes) {
+      const Scene base = sceneWith(opts, path, "");
+      std::vector<std::string> techniques{base.technique};
+      if (!isGlintsTechnique(base.technique))
+        for (const char* t : {"fis", "mirror", "env", "kdtree-mis"})
+          if (base.technique != t) techniques.push_back(t);
+      std::ostringstream quiet;
+      const EnvironmentMap env = loadEnvironment(base.environment, quiet);
+      for (const std::string& t : techniques) {
+        Scene scene;
+        try {
+          scene = sceneWith(opts, path, t);
+        } catch (const std::exception& e) {  // a technique the scene's materials do not allow (e.g. maps under mirror)
+          log << "model " << path << " " << t << ": skipped (" << e.what() << ")\n";
+          continue;
+        }
+        log << "model " << path << " " << scene.width << "x" << scene.height << " " << t << " on " << d << "\n";
+        const std::vector<Row> rows = modelFrame(scene, path, env, desc, &ctx, dev, opts.repeat, log, same);
+        all.insert(all.end(), rows.begin(), rows.end());
+      }
+    }
+  }
+  double sum = 0, worst = 0;
+  size_t n = 0;
+  std::map<std::string, std::pair<double, size_t>> perDevice, perPass;
+  for (const Row& r : all) {
+    if (r.measuredMs <= 0) continue;
+    const double e = std::fabs(r.predictedMs - r.measuredMs) / r.measuredMs * 100.0;
+    sum += e, worst = std::max(worst, e), ++n;
+    perDevice[r.device].first += e, ++perDevice[r.device].second;
+    perPass[r.pass].first += e, ++perPass[r.pass].second;
+  }
+  if (!opts.csv.empty()) {
+    const std::string tmp = opts.csv + ".tmp";
+    {
+      std::ofstream f(tmp);
+      if (!f) throw std::runtime_error(opts.csv + ": cannot write");
+      f << "scene,technique,device,pass,bound,predicted_ms,measured_ms,error_pct\n";
+      for (const Row& r : all)
+        f << r.scene << "," << r.technique << "," << r.device << "," << r.pass << "," << r.bound << "," << r.predictedMs << ","
+          << r.measuredMs << "," << (r.measuredMs > 0 ? 100.0 * (r.predictedMs - r.measuredMs) / r.measuredMs : 0.0) << "\n";
+      if (!f) throw std::runtime_error(opts.csv + ": write failed");
+    }
+    std::filesystem::rename(tmp, opts.csv);
+    log << "wrote " << opts.csv << "\n";
+  }
+  log << std::fixed << std::setprecision(1);
+  for (const auto& [d, v] : perDevice) log << "  " << d << ": mean abs error " << v.first / double(v.second) << "% over " << v.second << " passes\n";
+  for (const auto& [p, v] : perPass) log << "  " << p << ": mean abs error " << v.first / double(v.second) << "% over " << v.second << " runs\n";
+  log << "model: mean abs error " << (n ? sum / double(n) : 0.0) << "% over " << n << " passes (worst " << worst << "%)\n";
+  if (!same) log << "model: a counted pass changed a bit\n";
+  return same ? 0 : 1;
 }
 
 }  // namespace shadetwin

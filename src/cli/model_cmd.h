@@ -1,11 +1,13 @@
-// `shadetwin model --scene S [--technique T] --device D`: the performance model's prediction of a pass (issue 19,
-// first slice: the shading pass) from its counted work (model/shade_counts.h) and the device's description
-// (devices/D.json), with the measured time when D is a software device present here, and the check that the
-// counted run gives the emulator's bits.
+// `shadetwin model --scene S [--technique T] --device D`: the performance model's prediction of every pass of a frame
+// (issue 19) from its counted work (model/pass_counts.h) and the device's description (devices/D.json), with the
+// bound, the measured time when D is a software device present here, and the check that every counted pass gives
+// the emulator's bits. `shadetwin model --validate` does that for every shipped scene x technique on every present
+// software device and ends with "model: mean abs error E% over N passes (worst W%)".
 #pragma once
 #include <cstdint>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace shadetwin {
 
@@ -16,7 +18,11 @@ struct ModelOptions {
   std::string devicesDir = "devices";
   uint32_t width = 0, height = 0;
   uint32_t samples = 0;              // fis samples (0: the scene's)
-  uint32_t repeat = 3;               // timed runs of the measured pass (median)
+  uint32_t repeat = 3;               // timed runs of each measured pass (median)
+  bool validate = false;             // every shipped scene x technique x software device
+  std::vector<std::string> scenes;   // --validate: the scenes (default: every file in scenes/)
+  std::vector<std::string> devices;  // --validate: the devices (default: lavapipe, swiftshader)
+  std::string csv;                   // --validate: one row per pass
 };
 
 int modelCommand(const ModelOptions& opts, std::ostream& log);

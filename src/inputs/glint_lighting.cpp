@@ -14,6 +14,8 @@
 #include "emu/fpenv.h"
 #include "inputs/sh_legendre.h"
 #include "lanes/instantiate.h"
+#include "model/counted.h"
+#include "util/pass_log.h"
 #include "passes/passes_vk.h"
 #include "passes/shade.h"
 #include "vk/context.h"
@@ -126,7 +128,19 @@ Prepared prepare(const emu::Texture& env, const GlintLightingSpec& spec) {
 }
 }  // namespace
 
-GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DeviceProfile& dev, const GlintLightingSpec& spec) {
+namespace {
+// The driver over either lane build: the SIMD build (the emulator) or the counting one (the model).
+struct X8Lanes {
+  using Float = emu::F32<8>;
+  static auto column(auto&&... a) { return shade::x8::glintLightingColumn(a...); }
+};
+struct CountedLanes {
+  using Float = opcount::F<8>;
+  static auto column(auto&&... a) { return shade::counted::glintLightingColumn(a...); }
+};
+
+template <class L>
+GlintLightingTable glintLightingLanes(const emu::Texture& env, const emu::DeviceProfile& dev, const GlintLightingSpec& spec) {
   const auto t0 = std::chrono::steady_clock::now();
   Prepared pr = prepare(env, spec);
   GlintLightingTable& t = pr.t;
@@ -135,7 +149,7 @@ GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DevicePr
   const emu::Texture &dirs = pr.dirs, &coef = pr.coef;
   const shade::Sampler2D es = environmentSampler(env, dev, true), ds = environmentSampler(dirs, dev, false),
                          cs = environmentSampler(coef, dev, false);
-  using F = emu::F32<8>;
+  using F = typename L::Float;
   const uint32_t blocks = (views + 7) / 8;
   // Lanes: 8 consecutive views of one column m (a device vector of the compute kernel, whose
   // invocations run m-major), tail lanes repeat the last view.
@@ -151,7 +165,7 @@ GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DevicePr
             const uint32_t v = std::min(views - 1, b * 8 + uint32_t(l));
             wo.x.set(l, vd[4 * v]), wo.y.set(l, vd[4 * v + 1]), wo.z.set(l, vd[4 * v + 2]);
           }
-          const auto col = shade::x8::glintLightingColumn(es, ds, cs, int(ew), int(y0), int(y1), int(spec.level), int(spec.order),
+          const auto col = L::column(es, ds, cs, int(ew), int(y0), int(y1), int(spec.level), int(spec.order),
                                                           int(m), wo);
           for (int l = 0; l < 8 && b * 8 + uint32_t(l) < views; ++l)
             storeColumn(t, b * 8 + uint32_t(l), m, y0 == 0, [&](uint32_t i) { return col.c[i][l]; });
@@ -160,6 +174,17 @@ GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DevicePr
   }
   t.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return std::move(t);
+}
+
+}  // namespace
+
+GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DeviceProfile& dev, const GlintLightingSpec& spec) {
+  notePass("glint-lighting");
+  return glintLightingLanes<X8Lanes>(env, dev, spec);
+}
+
+GlintLightingTable glintLightingCounted(const emu::Texture& env, const emu::DeviceProfile& dev, const GlintLightingSpec& spec) {
+  return glintLightingLanes<CountedLanes>(env, dev, spec);
 }
 
 GlintLightingTable glintLightingVulkan(vk::Context& ctx, const emu::Texture& env, const GlintLightingSpec& spec) {

@@ -54,6 +54,9 @@ emu::Texture glintEnvDirections(uint32_t w, uint32_t h);
 /// Throws std::invalid_argument for an order above 64, fewer than 2 rings, no sectors, a level the
 /// environment lacks or an environment that is not RGBA32F.
 GlintLightingTable glintLightingEmu(const emu::Texture& env, const emu::DeviceProfile& dev, const GlintLightingSpec& spec);
+/// The same driver over the counting lane types (model/pass_counts.h): the same bits, operations counted on the
+/// calling thread.
+GlintLightingTable glintLightingCounted(const emu::Texture& env, const emu::DeviceProfile& dev, const GlintLightingSpec& spec);
 GlintLightingTable glintLightingVulkan(vk::Context& ctx, const emu::Texture& env, const GlintLightingSpec& spec);
 
 }  // namespace shadetwin

@@ -1,5 +1,7 @@
 #include "inputs/material.h"
 
+#include "util/pass_log.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -111,6 +113,7 @@ double mapBilinear(const MaterialMapImages& m, uint32_t layer, double u, double 
 }
 
 emu::Texture materialMapsEmu(const MaterialMapImages& m) {
+  if (m.width > 1 || m.height > 1) notePass("mips");  // a device pass on the Vulkan build (mipChainGpu)
   return packTexture(emu::Format::RGBA32F, m.width, m.height, m.layers, mipChainCpu(m.texels, m.width, m.height, m.layers, 8));
 }
 

@@ -11,6 +11,8 @@
 #include "emu/fpenv.h"
 #include "passes/mips.h"
 #include "lanes/instantiate.h"
+#include "model/counted.h"
+#include "util/pass_log.h"
 #include "passes/shade.h"
 #include "passes/passes_vk.h"
 #include "vk/context.h"
@@ -32,12 +34,22 @@ void checkInputs(const emu::Texture& env, uint32_t faceSize) {
     throw std::invalid_argument("paraboloid atlas: face size " + std::to_string(faceSize) + " outside [4, 8192]");
 }
 
-}  // namespace
+// The emulator's driver over either lane build: the SIMD build (the emulator) or the counting one (the model).
+struct X8Lanes {
+  using Float = emu::F32<8>;
+  using Int = emu::I32<8>;
+  static auto resample(auto&&... a) { return shade::x8::paraboloidResample(a...); }
+};
+struct CountedLanes {
+  using Float = opcount::F<8>;
+  using Int = opcount::I<8>;
+  static auto resample(auto&&... a) { return shade::counted::paraboloidResample(a...); }
+};
 
-std::vector<float> paraboloidAtlasEmu(const emu::Texture& env, const emu::DeviceProfile& dev, uint32_t faceSize) {
-  checkInputs(env, faceSize);
-  using F = emu::F32<8>;
-  using I = emu::I32<8>;
+template <class L>
+std::vector<float> paraboloidAtlasLanes(const emu::Texture& env, const emu::DeviceProfile& dev, uint32_t faceSize) {
+  using F = typename L::Float;
+  using I = typename L::Int;
   const size_t w = 2 * size_t(faceSize), n = w * faceSize;
   std::vector<float> out(4 * n);
   const shade::Sampler2D s = environmentSampler(env, dev, true);
@@ -52,7 +64,7 @@ std::vector<float> paraboloidAtlasEmu(const emu::Texture& env, const emu::Device
         xi.set(l, int32_t(p % w));
         yi.set(l, int32_t(p / w));
       }
-      const shade::V4<F> c = shade::x8::paraboloidResample(s, ew, eh, xi, yi, I(int32_t(faceSize)));
+      const shade::V4<F> c = L::resample(s, ew, eh, xi, yi, I(int32_t(faceSize)));
       for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
         float* o = &out[4 * (b * 8 + size_t(l))];
         o[0] = c.x[l], o[1] = c.y[l], o[2] = c.z[l], o[3] = c.w[l];
@@ -60,6 +72,19 @@ std::vector<float> paraboloidAtlasEmu(const emu::Texture& env, const emu::Device
     }
   });
   return out;
+}
+
+}  // namespace
+
+std::vector<float> paraboloidAtlasEmu(const emu::Texture& env, const emu::DeviceProfile& dev, uint32_t faceSize) {
+  checkInputs(env, faceSize);
+  notePass("paraboloid");
+  return paraboloidAtlasLanes<X8Lanes>(env, dev, faceSize);
+}
+
+std::vector<float> paraboloidAtlasCounted(const emu::Texture& env, const emu::DeviceProfile& dev, uint32_t faceSize) {
+  checkInputs(env, faceSize);
+  return paraboloidAtlasLanes<CountedLanes>(env, dev, faceSize);
 }
 
 std::vector<float> paraboloidAtlasVulkan(vk::Context& ctx, const emu::Texture& env, uint32_t faceSize) {
@@ -80,7 +105,9 @@ std::vector<float> paraboloidAtlasVulkan(vk::Context& ctx, const emu::Texture& e
 }
 
 emu::Texture paraboloidTextureEmu(const emu::Texture& env, const emu::DeviceProfile& dev, uint32_t faceSize) {
-  const auto chain = mipChainCpu(paraboloidAtlasEmu(env, dev, faceSize), 2 * faceSize, faceSize, 1, 8);
+  const std::vector<float> level0 = paraboloidAtlasEmu(env, dev, faceSize);
+  notePass("mips");  // a device pass on the Vulkan build (mipChainGpu)
+  const auto chain = mipChainCpu(level0, 2 * faceSize, faceSize, 1, 8);
   return packTexture(emu::Format::RGBA32F, 2 * faceSize, faceSize, 1, chain);
 }
 

@@ -1,6 +1,7 @@
 #include "inputs/sh_irradiance.h"
 
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,8 @@
 #include "passes/shade.h"
 #include "passes/passes_vk.h"
 #include "lanes/instantiate.h"
+#include "model/counted.h"
+#include "util/pass_log.h"
 #include "vk/context.h"
 
 namespace shadetwin {
@@ -35,29 +38,46 @@ void checkInput(const emu::Texture& env) {
 
 using V3f = shade::V3<float>;
 
+// The drivers over either lane build: SIMD / scalar (the emulator) or the counting ones (the model).
+struct EmuLanes {
+  using Int = emu::I32<8>;
+  using F1 = float;
+  static auto project(auto&&... a) { return shade::x8::shProjectRow(a...); }
+  static auto add3(auto&&... a) { return shade::scalar::shAdd3(a...); }
+  static auto scale(auto&&... a) { return shade::scalar::shIrradianceScale(a...); }
+};
+struct CountedLanes {
+  using Int = opcount::I<8>;
+  using F1 = opcount::F<1>;
+  static auto project(auto&&... a) { return shade::counted::shProjectRow(a...); }
+  static auto add3(auto&&... a) { return shade::counted1::shAdd3(a...); }
+  static auto scale(auto&&... a) { return shade::counted1::shIrradianceScale(a...); }
+};
+
 // The pairwise tree of sh_reduce.comp over `rows` (16 vec4 per row, in place), then the band scale.
+template <class L>
 ShIrradiance reduceRows(std::vector<float>& rows, uint32_t rowCount) {
+  using V3 = shade::V3<typename L::F1>;
+  using opcount::lane0;
   ShIrradiance r;
   for (uint32_t k = 0; k < 16; ++k) {
     for (uint32_t s = 1; s < rowCount; s *= 2)
       for (uint32_t i = 0; i + s < rowCount; i += 2 * s) {
         float* a = &rows[4 * (i * 16 + k)];
         const float* b = &rows[4 * ((i + s) * 16 + k)];
-        const V3f c = shade::scalar::shAdd3(V3f(a[0], a[1], a[2]), V3f(b[0], b[1], b[2]));
-        a[0] = c.x, a[1] = c.y, a[2] = c.z;
+        const V3 c = L::add3(V3(a[0], a[1], a[2]), V3(b[0], b[1], b[2]));
+        a[0] = lane0(c.x), a[1] = lane0(c.y), a[2] = lane0(c.z);
       }
     const float* t = &rows[4 * k];
-    const V3f c = shade::scalar::shIrradianceScale(k, V3f(t[0], t[1], t[2]));
+    const V3 c = L::scale(k, V3(t[0], t[1], t[2]));
     float* o = k < 9 ? &r.c[3 * k] : &r.band3[3 * (k - 9)];
-    o[0] = c.x, o[1] = c.y, o[2] = c.z;
+    o[0] = lane0(c.x), o[1] = lane0(c.y), o[2] = lane0(c.z);
   }
   return r;
 }
-}  // namespace
-
-ShIrradiance shIrradianceEmu(const emu::Texture& env, const emu::DeviceProfile& dev) {
-  checkInput(env);
-  using I = emu::I32<8>;
+template <class L>
+ShIrradiance shIrradianceLanes(const emu::Texture& env, const emu::DeviceProfile& dev, const std::function<void()>& between) {
+  using I = typename L::Int;
   const int32_t w = int32_t(env.width()), h = int32_t(env.height());
   std::vector<float> rows(size_t(h) * 16 * 4, 0.0f);
   const shade::Sampler2D s = environmentSampler(env, dev, true);  // texelFetch ignores the sampler state
@@ -66,10 +86,10 @@ ShIrradiance shIrradianceEmu(const emu::Texture& env, const emu::DeviceProfile& 
     for (int32_t b = r.begin(); b != r.end(); ++b) {
       I y;
       for (int l = 0; l < 8; ++l) y.set(l, std::min(b * 8 + l, h - 1));  // tail lanes repeat the last row
-      const auto row = shade::x8::shProjectRow(s, y, w, h);
+      const auto row = L::project(s, y, w, h);
       const auto& c = row.low;
       const auto& hb = row.high;
-      const shade::V3<emu::F32<8>> cs[16] = {c.c0,   c.c1,   c.c2,   c.c3,   c.c4,   c.c5,   c.c6,   c.c7,
+      const std::decay_t<decltype(c.c0)> cs[16] = {c.c0,   c.c1,   c.c2,   c.c3,   c.c4,   c.c5,   c.c6,   c.c7,
                                              c.c8,   hb.c9,  hb.c10, hb.c11, hb.c12, hb.c13, hb.c14, hb.c15};
       for (int l = 0; l < 8 && b * 8 + l < h; ++l)
         for (int k = 0; k < 16; ++k) {
@@ -78,8 +98,21 @@ ShIrradiance shIrradianceEmu(const emu::Texture& env, const emu::DeviceProfile& 
         }
     }
   });
+  if (between) between();
   emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
-  return reduceRows(rows, uint32_t(h));
+  return reduceRows<L>(rows, uint32_t(h));
+}
+}  // namespace
+
+ShIrradiance shIrradianceEmu(const emu::Texture& env, const emu::DeviceProfile& dev) {
+  checkInput(env);
+  notePass("sh-project");
+  return shIrradianceLanes<EmuLanes>(env, dev, [] { notePass("sh-reduce"); });
+}
+
+ShIrradiance shIrradianceCounted(const emu::Texture& env, const emu::DeviceProfile& dev, const std::function<void()>& between) {
+  checkInput(env);
+  return shIrradianceLanes<CountedLanes>(env, dev, between);
 }
 
 ShIrradiance shIrradianceVulkan(vk::Context& ctx, const emu::Texture& env) {

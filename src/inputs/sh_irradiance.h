@@ -3,6 +3,7 @@
 // the same bits. The result is what the fis shading pass reads for its diffuse term.
 #pragma once
 #include <array>
+#include <functional>
 
 #include "emu/device_profile.h"
 #include "emu/texture.h"
@@ -20,6 +21,9 @@ struct ShIrradiance {
 /// On the emulator: rows in 8-lane vectors (SIMD build), TBB over vectors, then the tree (scalar
 /// build) in the device's compute-stage denormal mode. `env`: RGBA32F, level 0 is read.
 ShIrradiance shIrradianceEmu(const emu::Texture& env, const emu::DeviceProfile& dev);
+/// The same drivers over the counting lane types (model/pass_counts.h): the same bits, operations counted on the
+/// calling thread; `between` runs after the projection pass, before the reduction.
+ShIrradiance shIrradianceCounted(const emu::Texture& env, const emu::DeviceProfile& dev, const std::function<void()>& between);
 
 /// On a Vulkan device: src/shaders/sh_project.comp then src/shaders/sh_reduce.comp.
 ShIrradiance shIrradianceVulkan(vk::Context& ctx, const emu::Texture& env);

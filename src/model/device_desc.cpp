@@ -43,7 +43,8 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   }
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
-                "dispatch_seconds", "units_overlap"},
+                "dispatch_seconds", "triangles_per_second", "fragments_per_second", "attachment_bytes_per_second",
+                "units_overlap"},
             path, "");
   DeviceDesc d;
   for (const char* k : {"device", "name", "provenance"})
@@ -70,6 +71,9 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   d.cacheBytes = positive(j, "cache_bytes", path, "");
   d.bandwidthBytesPerSecond = positive(j, "bandwidth_bytes_per_second", path, "");
   d.dispatchSeconds = positive(j, "dispatch_seconds", path, "");
+  d.trianglesPerSecond = positive(j, "triangles_per_second", path, "");
+  d.fragmentsPerSecond = positive(j, "fragments_per_second", path, "");
+  d.attachmentBytesPerSecond = positive(j, "attachment_bytes_per_second", path, "");
   return d;
 }
 
@@ -98,6 +102,9 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"cache_bytes", d.cacheBytes},
             {"bandwidth_bytes_per_second", d.bandwidthBytesPerSecond},
             {"dispatch_seconds", d.dispatchSeconds},
+            {"triangles_per_second", d.trianglesPerSecond},
+            {"fragments_per_second", d.fragmentsPerSecond},
+            {"attachment_bytes_per_second", d.attachmentBytesPerSecond},
             {"units_overlap", d.unitsOverlap}};
   return j.dump(2) + "\n";
 }

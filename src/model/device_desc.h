@@ -29,6 +29,10 @@ struct DeviceDesc {
   double cacheBytes = 0.0;      // the last level shared by all cores (CPU L2/L3 per machine, GPU L2)
   double bandwidthBytesPerSecond = 0.0;  // read + write of a large buffer
   double dispatchSeconds = 0.0;          // an empty compute dispatch, submit to completion
+  // Fixed-function rasterization: triangles (set-up, clipping, binning) and covered pixels (coverage, depth test and
+  // write) per second; the fragment shader's own operations are counted with the ALU classes.
+  double trianglesPerSecond = 0.0, fragmentsPerSecond = 0.0;
+  double attachmentBytesPerSecond = 0.0;  // render targets cleared and copied out (bytes of the target per second)
   // How the units' times combine: false (software devices: the same cores run arithmetic, texture filtering and
   // memory traffic one after another, so the times add), true (GPUs: separate units overlap, the slowest bounds).
   bool unitsOverlap = false;

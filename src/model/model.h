@@ -1,20 +1,20 @@
-// The performance model (issue 19): a pass's counted work (model/shade_counts.h) over a device's measured or
+// The performance model (issue 19): a pass's counted work (model/pass_counts.h) over a device's measured or
 // published rates (model/device_desc.h) gives its predicted time and what bounds it.
 #pragma once
 #include <string>
 
 #include "model/device_desc.h"
-#include "model/shade_counts.h"
+#include "model/pass_counts.h"
 
 namespace shadetwin::model {
 
 struct Prediction {
-  double aluSeconds = 0, textureSeconds = 0, memorySeconds = 0, launchSeconds = 0;
-  double seconds = 0;   // sum of the terms (software devices) or the largest plus launch (GPUs)
-  std::string bound;    // alu, texture, memory or launch: the largest term
+  double aluSeconds = 0, textureSeconds = 0, memorySeconds = 0, rasterSeconds = 0, launchSeconds = 0;
+  double seconds = 0;   // sum of the terms (software devices) or the largest plus launch (GPUs); launch = dispatches x cost
+  std::string bound;    // alu, texture, memory, raster or launch: the largest term
 };
 
-/// Scalar operations of each model class from counted vector ticks (8 lanes each; mask logic is integer ALU).
+/// Scalar (lane) operations of each model class from a pass's counts (mask logic is integer ALU).
 std::array<double, kOpClasses> scalarOps(const PassCounts& c);
 Prediction predict(const PassCounts& c, const DeviceDesc& d);
 

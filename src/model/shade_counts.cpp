@@ -1,4 +1,4 @@
-#include "model/shade_counts.h"
+#include "model/pass_counts.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,18 +30,31 @@ namespace counted_pass {
 
 namespace model {
 
+std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& f) {
+  std::array<uint64_t, opcount::kKinds> t{};
+  tbb::task_arena one(1);  // the counters are per thread: one thread does all the work
+  one.execute([&] {
+    opcount::counts = {};
+    f();
+    for (int k = 0; k < opcount::kKinds; ++k) t[size_t(k)] = opcount::counts[size_t(k)];
+  });
+  return t;
+}
+
+void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks, double lanes) {
+  for (int k = 0; k < opcount::kKinds; ++k)
+    c.ops[size_t(k)] += double(ticks[size_t(k)]) * (k < opcount::kTexLookup ? lanes : 1.0);
+}
+
 PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
                           const VisibilityImage* vis, std::vector<float>* out) {
   std::vector<float> image;
   PassCounts c;
-  tbb::task_arena one(1);  // the counters are per thread: one thread does all the work
-  one.execute([&] {
-    opcount::counts = {};
-    counted_pass::shadeCounted(scene, g, in, dev, image, vis);
-    for (int k = 0; k < opcount::kKinds; ++k) c.ticks[size_t(k)] = opcount::counts[size_t(k)];
-  });
+  c.pass = "shade";
+  addTicks(c, countedTicks([&] { counted_pass::shadeCounted(scene, g, in, dev, image, vis); }), 8);
   const uint64_t pixels = uint64_t(g.width) * g.height;
   c.invocations = (pixels + 7) / 8 * 8;
+  c.dispatches = 1;
   c.bytesRead = pixels * uint64_t(kGbufFloats) * 4;
   c.bytesWritten = pixels * 16;
   if (out) *out = std::move(image);

@@ -50,5 +50,8 @@ struct GbufferStats {
 /// reused when it is large enough (cleared like a GPU's attachments).
 void gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& target, GbufferStats* stats = nullptr);
 GBuffer gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GbufferStats* stats = nullptr);
+/// The same pass over the counting lane types (model/pass_counts.h): the same bits, operations counted on the calling
+/// thread (which must keep the work on itself: the stages run through tbb::parallel_for).
+GBuffer gbufferCounted(const Scene& scene, const emu::DeviceProfile& dev, GbufferStats* stats = nullptr);
 
 }  // namespace shadetwin

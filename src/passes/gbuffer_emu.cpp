@@ -13,6 +13,8 @@
 #include "emu/fpenv.h"
 #include "inputs/material.h"
 #include "lanes/instantiate.h"
+#include "model/counted.h"
+#include "util/pass_log.h"
 #include "util/timer.h"
 
 namespace shadetwin {
@@ -38,19 +40,26 @@ ObjectGpu objectGpu(const Object& o) {
 }
 
 namespace {
-using V2f = shade::V2<float>;
-using V3f = shade::V3<float>;
-using V4f = shade::V4<float>;
-V4f col(const float* m, int c) { return V4f(m[4 * c], m[4 * c + 1], m[4 * c + 2], m[4 * c + 3]); }
-}  // namespace
+// The driver over either lane build: the scalar build (the emulator's vertex and fragment stages) or the counting one
+// (the model).
+struct ScalarLanes {
+  using Float = float;
+  static auto vertex(auto&&... a) { return shade::scalar::gbufferVertex(a...); }
+  static auto fragment(auto&&... a) { return shade::scalar::gbufferFragment(a...); }
+};
+struct CountedLanes {
+  using Float = opcount::F<1>;
+  static auto vertex(auto&&... a) { return shade::counted1::gbufferVertex(a...); }
+  static auto fragment(auto&&... a) { return shade::counted1::gbufferFragment(a...); }
+};
 
-GBuffer gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GbufferStats* stats) {
-  GBuffer g;
-  gbufferEmu(scene, dev, g, stats);
-  return g;
-}
-
-void gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& g, GbufferStats* stats) {
+template <class L>
+void gbufferLanes(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& g, GbufferStats* stats) {
+  using V2f = shade::V2<typename L::Float>;
+  using V3f = shade::V3<typename L::Float>;
+  using V4f = shade::V4<typename L::Float>;
+  using opcount::lane0;
+  auto col = [](const float* m, int c) { return V4f(m[4 * c], m[4 * c + 1], m[4 * c + 2], m[4 * c + 3]); };
   emu::Framebuffer fb;
   fb.color.swap(g.texels);
   fb.depth.swap(g.depth);
@@ -70,15 +79,16 @@ void gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& g, G
       auto& N = mesh.normals[i];
       auto& T = mesh.tangents[i];
       auto& U = mesh.uvs[i];
-      auto o = shade::scalar::gbufferVertex(col(og.model, 0), col(og.model, 1), col(og.model, 2), col(og.model, 3),
+      auto o = L::vertex(col(og.model, 0), col(og.model, 1), col(og.model, 2), col(og.model, 3),
                                             col(og.normal, 0), col(og.normal, 1), col(og.normal, 2), col(vp.data(), 0),
                                             col(vp.data(), 1), col(vp.data(), 2), col(vp.data(), 3), V3f(P[0], P[1], P[2]),
                                             V3f(N[0], N[1], N[2]), V4f(T[0], T[1], T[2], T[3]), V2f(U[0], U[1]));
       float* c = &clip[4 * i];
-      c[0] = o.clip.x, c[1] = o.clip.y, c[2] = o.clip.z, c[3] = o.clip.w;
+      c[0] = lane0(o.clip.x), c[1] = lane0(o.clip.y), c[2] = lane0(o.clip.z), c[3] = lane0(o.clip.w);
       float* v = &vary[kGbufVaryings * i];
-      const float vals[kGbufVaryings] = {o.worldPos.x, o.worldPos.y, o.worldPos.z, o.normal.x,  o.normal.y,  o.normal.z,
-                                         o.tangent.x,  o.tangent.y,  o.tangent.z,  o.tangent.w, o.uv.x, o.uv.y};
+      const float vals[kGbufVaryings] = {lane0(o.worldPos.x), lane0(o.worldPos.y), lane0(o.worldPos.z), lane0(o.normal.x),
+                                         lane0(o.normal.y),   lane0(o.normal.z),   lane0(o.tangent.x),  lane0(o.tangent.y),
+                                         lane0(o.tangent.z),  lane0(o.tangent.w),  lane0(o.uv.x),       lane0(o.uv.y)};
       std::memcpy(v, vals, sizeof vals);
     });
     local.vertexMs += msSince(t0);
@@ -97,15 +107,15 @@ void gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& g, G
       emu::quadDerivatives(dev, q.v[10], dudx, dudy);
       emu::quadDerivatives(dev, q.v[11], dvdx, dvdy);
       for (int i = 0; i < 4; ++i) {
-        auto g = shade::scalar::gbufferFragment(V3f(q.v[0][i], q.v[1][i], q.v[2][i]), V3f(q.v[3][i], q.v[4][i], q.v[5][i]),
+        auto g = L::fragment(V3f(q.v[0][i], q.v[1][i], q.v[2][i]), V3f(q.v[3][i], q.v[4][i], q.v[5][i]),
                                                 V4f(q.v[6][i], q.v[7][i], q.v[8][i], q.v[9][i]), V2f(q.v[10][i], q.v[11][i]),
                                                 V2f(dudx[i], dvdx[i]), V2f(dudy[i], dvdy[i]), materialId);
         const V4f att[4] = {g.g0, g.g1, g.g2, g.g3};
         for (int a = 0; a < 4; ++a) {
-          out[4 * a][i] = att[a].x;
-          out[4 * a + 1][i] = att[a].y;
-          out[4 * a + 2][i] = att[a].z;
-          out[4 * a + 3][i] = att[a].w;
+          out[4 * a][i] = lane0(att[a].x);
+          out[4 * a + 1][i] = lane0(att[a].y);
+          out[4 * a + 2][i] = lane0(att[a].z);
+          out[4 * a + 3][i] = lane0(att[a].w);
         }
       }
     }, &local.raster);
@@ -116,6 +126,24 @@ void gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& g, G
   g.height = scene.height;
   g.texels.swap(fb.color);
   g.depth.swap(fb.depth);
+}
+}  // namespace
+
+GBuffer gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GbufferStats* stats) {
+  GBuffer g;
+  gbufferEmu(scene, dev, g, stats);
+  return g;
+}
+
+void gbufferEmu(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& g, GbufferStats* stats) {
+  notePass("gbuffer");
+  gbufferLanes<ScalarLanes>(scene, dev, g, stats);
+}
+
+GBuffer gbufferCounted(const Scene& scene, const emu::DeviceProfile& dev, GbufferStats* stats) {
+  GBuffer g;
+  gbufferLanes<CountedLanes>(scene, dev, g, stats);
+  return g;
 }
 
 }  // namespace shadetwin

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "lanes/instantiate.h"
+#include "model/counted.h"
 #include "vk/context.h"
 
 namespace shadetwin {
@@ -44,11 +45,27 @@ void downsampleScalar(const float* src, float* dst, int sw, int sh, int layers) 
     }
 }
 
+// The 8-lane driver over either lane build: the SIMD build (the emulator) or the counting one (the model).
+struct X8Lanes {
+  using Float = emu::F32<8>;
+  using Int = emu::I32<8>;
+  using MipTaps = shade::x8::MipTaps;
+  static auto mipTaps(auto&&... a) { return shade::x8::mipTaps(a...); }
+  static auto mipCombine(auto&&... a) { return shade::x8::mipCombine(a...); }
+};
+struct CountedLanes {
+  using Float = opcount::F<8>;
+  using Int = opcount::I<8>;
+  using MipTaps = shade::counted::MipTaps;
+  static auto mipTaps(auto&&... a) { return shade::counted::mipTaps(a...); }
+  static auto mipCombine(auto&&... a) { return shade::counted::mipCombine(a...); }
+};
+
 // One destination level through the 8-lane SIMD build: 8 destination texels of a row per step.
-void downsampleSimd(const float* src, float* dst, int sw, int sh, int layers) {
-  namespace X = shade::x8;
-  using F = emu::F32<8>;
-  using I = emu::I32<8>;
+template <class X>
+void downsampleLanes(const float* src, float* dst, int sw, int sh, int layers) {
+  using F = typename X::Float;
+  using I = typename X::Int;
   using V4 = shade::V4<F>;
   const int dw = std::max(1, sw >> 1), dh = std::max(1, sh >> 1);
   auto gather = [&](int layer, I xs, int y) {
@@ -62,11 +79,11 @@ void downsampleSimd(const float* src, float* dst, int sw, int sh, int layers) {
   };
   for (int layer = 0; layer < layers; ++layer)
     for (int y = 0; y < dh; ++y) {
-      X::MipTaps ty = X::mipTaps(I(y), I(sh));
+      typename X::MipTaps ty = X::mipTaps(I(y), I(sh));
       for (int x0 = 0; x0 < dw; x0 += 8) {
         I xs;
         for (int l = 0; l < 8; ++l) xs.set(l, std::min(x0 + l, dw - 1));
-        X::MipTaps tx = X::mipTaps(xs, I(sw));
+        typename X::MipTaps tx = X::mipTaps(xs, I(sw));
         V4 r[3];
         const int y0 = ty.i0[0];  // the row is uniform across the 8 lanes
         for (int k = 0; k < 3; ++k)
@@ -85,14 +102,15 @@ void downsampleSimd(const float* src, float* dst, int sw, int sh, int layers) {
 std::vector<std::vector<float>> mipChainCpu(const std::vector<float>& level0, uint32_t w, uint32_t h, uint32_t layers,
                                             int lanes) {
   checkShape(level0, w, h, layers);
-  if (lanes != 1 && lanes != 8) throw std::invalid_argument("mipChainCpu: lanes must be 1 or 8");
+  if (lanes != 1 && lanes != 8 && lanes != 0) throw std::invalid_argument("mipChainCpu: lanes must be 1 or 8");
   std::vector<std::vector<float>> levels{level0};
   const uint32_t n = emu::Texture::fullChainLevels(w, h);
   for (uint32_t l = 1; l < n; ++l) {
     const int sw = int(std::max(1u, w >> (l - 1))), sh = int(std::max(1u, h >> (l - 1)));
     const int dw = std::max(1, sw >> 1), dh = std::max(1, sh >> 1);
     std::vector<float> next(size_t(dw) * dh * layers * 4);
-    (lanes == 1 ? downsampleScalar : downsampleSimd)(levels.back().data(), next.data(), sw, sh, int(layers));
+    (lanes == 1 ? downsampleScalar : lanes == 8 ? downsampleLanes<X8Lanes> : downsampleLanes<CountedLanes>)(
+        levels.back().data(), next.data(), sw, sh, int(layers));
     levels.push_back(std::move(next));
   }
   return levels;

@@ -11,7 +11,8 @@ namespace shadetwin {
 namespace vk { class Context; }
 
 /// Float4 texels (layer-major, rows) of level 0 -> every level down to 1x1 (levels[0] = the input).
-/// lanes = 1: scalar build; 8: SIMD build. Throws std::invalid_argument on zero sizes or a wrong size.
+/// lanes = 1: scalar build; 8: SIMD build; 0: the SIMD driver over the counting lane types (model/pass_counts.h,
+/// the same bits, operations counted on the calling thread). Throws std::invalid_argument on zero sizes or a wrong size.
 std::vector<std::vector<float>> mipChainCpu(const std::vector<float>& level0, uint32_t width, uint32_t height,
                                             uint32_t layers, int lanes = 8);
 std::vector<std::vector<float>> mipChainGpu(vk::Context& ctx, const std::vector<float>& level0, uint32_t width,

@@ -14,6 +14,7 @@
 #include "emu/fpenv.h"
 #include "inputs/material.h"
 #include "lanes/instantiate.h"
+#include "util/pass_log.h"
 #include "util/timer.h"
 
 namespace shadetwin {
@@ -77,6 +78,12 @@ float fisLevelConstant(const Scene& scene) {
 #define SHADE_EMU_U emu::U32<8>
 #define SHADE_EMU_I emu::I32<8>
 #define SHADE_EMU_M emu::Mask<8>
-#define SHADE_EMU_ENTRY shadeEmu
+#define SHADE_EMU_ENTRY shadeEmuX8
 #include "passes/shade_emu_body.inl"
+
+void shadeEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev, std::vector<float>& out,
+              const VisibilityImage* vis) {
+  notePass("shade");
+  shadeEmuX8(scene, g, in, dev, out, vis);
+}
 }  // namespace shadetwin

@@ -40,4 +40,9 @@ ShadowMaps shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, ui
 void shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size, const emu::DeviceProfile& dev,
                ShadowMaps& target, ShadowStats* stats = nullptr);
 
+/// The same passes over the counting lane types (model/pass_counts.h): the same bits, operations counted on the
+/// calling thread (which must keep the work on itself: the directions run through tbb::parallel_for).
+ShadowMaps shadowCounted(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size, const emu::DeviceProfile& dev,
+                         ShadowStats* stats = nullptr);
+
 }  // namespace shadetwin

@@ -8,6 +8,8 @@
 
 #include "passes/gbuffer.h"
 #include "lanes/instantiate.h"
+#include "model/counted.h"
+#include "util/pass_log.h"
 
 namespace shadetwin {
 
@@ -62,10 +64,23 @@ ShadowMaps shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, ui
   return sm;
 }
 
-void shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size, const emu::DeviceProfile& dev,
-               ShadowMaps& sm, ShadowStats* stats) {
-  using V3f = shade::V3<float>;
-  using V4f = shade::V4<float>;
+namespace {
+// The driver over either lane build: the scalar build (the emulator's vertex stage) or the counting one (the model).
+struct ScalarLanes {
+  using Float = float;
+  static auto vertex(auto&&... a) { return shade::scalar::shadowVertex(a...); }
+};
+struct CountedLanes {
+  using Float = opcount::F<1>;
+  static auto vertex(auto&&... a) { return shade::counted1::shadowVertex(a...); }
+};
+
+template <class L>
+void shadowLanes(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size, const emu::DeviceProfile& dev,
+                 ShadowMaps& sm, ShadowStats* stats) {
+  using V3f = shade::V3<typename L::Float>;
+  using V4f = shade::V4<typename L::Float>;
+  using opcount::lane0;
   auto col = [](const float* m, int c) { return V4f(m[4 * c], m[4 * c + 1], m[4 * c + 2], m[4 * c + 3]); };
   sm.size = size;
   sm.directions = directions;
@@ -87,9 +102,9 @@ void shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t
       std::vector<float> clip(4 * mesh.positions.size());
       for (size_t i = 0; i < mesh.positions.size(); ++i) {
         const auto& P = mesh.positions[i];
-        V4f c = shade::scalar::shadowVertex(col(m, 0), col(m, 1), col(m, 2), col(m, 3), col(l, 0), col(l, 1), col(l, 2),
-                                            col(l, 3), V3f(P[0], P[1], P[2]));
-        clip[4 * i] = c.x, clip[4 * i + 1] = c.y, clip[4 * i + 2] = c.z, clip[4 * i + 3] = c.w;
+        V4f c = L::vertex(col(m, 0), col(m, 1), col(m, 2), col(m, 3), col(l, 0), col(l, 1), col(l, 2), col(l, 3),
+                          V3f(P[0], P[1], P[2]));
+        clip[4 * i] = lane0(c.x), clip[4 * i + 1] = lane0(c.y), clip[4 * i + 2] = lane0(c.z), clip[4 * i + 3] = lane0(c.w);
       }
       auto t1 = std::chrono::steady_clock::now();
       emu::DrawInput in;
@@ -113,6 +128,21 @@ void shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t
       stats->raster.fragments += s.raster.fragments;
     }
   }
+}
+
+}  // namespace
+
+void shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size, const emu::DeviceProfile& dev,
+               ShadowMaps& sm, ShadowStats* stats) {
+  notePass("shadow");
+  shadowLanes<ScalarLanes>(scene, directions, size, dev, sm, stats);
+}
+
+ShadowMaps shadowCounted(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size, const emu::DeviceProfile& dev,
+                         ShadowStats* stats) {
+  ShadowMaps sm;
+  shadowLanes<CountedLanes>(scene, directions, size, dev, sm, stats);
+  return sm;
 }
 
 }  // namespace shadetwin

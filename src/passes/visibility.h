@@ -29,6 +29,13 @@ VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, con
                                  const emu::DeviceProfile& dev);
 
 
+/// The fit and the filter over the counting lane types (model/pass_counts.h): the same bits, operations counted
+/// on the calling thread.
+VisibilityImage visibilityFitCounted(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v,
+                                     const emu::DeviceProfile& dev);
+VisibilityImage visibilityFilterCounted(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v,
+                                        const emu::DeviceProfile& dev);
+
 /// The spatial filter of the coefficient images (shade/visibility.h visFilter); radius 0: none.
 VisibilityImage visibilityFilterEmu(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v,
                                     const emu::DeviceProfile& dev);

@@ -8,6 +8,8 @@
 
 #include "emu/fpenv.h"
 #include "lanes/instantiate.h"
+#include "model/counted.h"
+#include "util/pass_log.h"
 #include "passes/shade.h"
 #include "util/timer.h"
 
@@ -16,6 +18,22 @@ namespace shadetwin {
 namespace {
 // The emulated kernels' loop: TBB over blocks of 8 pixels (row-major; tail lanes repeat the last
 // pixel) in the compute stage's denormal mode; kernel(block) gives the 8 lanes' coefficients.
+// The drivers over either lane build: the SIMD build (the emulator) or the counting one (the model).
+struct X8Lanes {
+  using Float = emu::F32<8>;
+  using Int = emu::I32<8>;
+  using VisSettings = shade::x8::VisSettings;
+  static auto fit(auto&&... a) { return shade::x8::visFit(a...); }
+  static auto filter(auto&&... a) { return shade::x8::visFilter(a...); }
+};
+struct CountedLanes {
+  using Float = opcount::F<8>;
+  using Int = opcount::I<8>;
+  using VisSettings = shade::counted::VisSettings;
+  static auto fit(auto&&... a) { return shade::counted::visFit(a...); }
+  static auto filter(auto&&... a) { return shade::counted::visFilter(a...); }
+};
+
 template <class Kernel>
 VisibilityImage perPixelBlocks(uint32_t width, uint32_t height, const emu::DeviceProfile& dev, Kernel kernel) {
   VisibilityImage out;
@@ -25,8 +43,8 @@ VisibilityImage perPixelBlocks(uint32_t width, uint32_t height, const emu::Devic
   tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + 7) / 8, 64), [&](const tbb::blocked_range<size_t>& r) {
     emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
     for (size_t b = r.begin(); b != r.end(); ++b) {
-      const shade::x8::Sh16 c = kernel(b, n);
-      const shade::V4<emu::F32<8>> q[4] = {c.a, c.b, c.c, c.d};
+      const auto c = kernel(b, n);
+      const std::decay_t<decltype(c.a)> q[4] = {c.a, c.b, c.c, c.d};
       for (int l = 0; l < 8 && b * 8 + size_t(l) < n; ++l) {
         float* o = &out.coeffs[(b * 8 + size_t(l)) * 16];
         for (int j = 0; j < 4; ++j) o[4 * j] = q[j].x[l], o[4 * j + 1] = q[j].y[l], o[4 * j + 2] = q[j].z[l], o[4 * j + 3] = q[j].w[l];
@@ -34,6 +52,40 @@ VisibilityImage perPixelBlocks(uint32_t width, uint32_t height, const emu::Devic
     }
   });
   return out;
+}
+template <class L>
+VisibilityImage visibilityFitLanes(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v,
+                                   const emu::DeviceProfile& dev) {
+  using V3x = shade::V3<typename L::Float>;
+  const shade::Sampler2D mapS = environmentSampler(maps, dev, false), dataS = environmentSampler(*v.data, dev, false);
+  const typename L::VisSettings s{uint32_t(maps.layers()), maps.width(), v.settings.fitCosine ? shade::x8::kVisFitVCos : shade::x8::kVisFitV,
+                                  v.biasConst, v.biasSlope};
+  return perPixelBlocks(g.width, g.height, dev, [&](size_t b, size_t n) {
+    V3x p, nrm;
+    for (int l = 0; l < 8; ++l) {
+      const float* t = g.texels.data() + std::min(b * 8 + size_t(l), n - 1) * kGbufFloats;
+      p.x.set(l, t[0]), p.y.set(l, t[1]), p.z.set(l, t[2]);
+      nrm.x.set(l, t[4]), nrm.y.set(l, t[5]), nrm.z.set(l, t[6]);
+    }
+    return L::fit(mapS, dataS, s, p, nrm);
+  });
+}
+
+template <class L>
+VisibilityImage visibilityFilterLanes(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v,
+                                      const emu::DeviceProfile& dev) {
+  using I8 = typename L::Int;
+  const emu::Texture ct = visibilityCoeffTexture(in), gt = gbufferPositionNormalTexture(g);
+  const shade::Sampler2D cs = environmentSampler(ct, dev, false), gs = environmentSampler(gt, dev, false);
+  const uint32_t mode = v.settings.filterEdgeAware ? shade::x8::kVisFilterEdge : shade::x8::kVisFilterBox;
+  return perPixelBlocks(in.width, in.height, dev, [&](size_t b, size_t n) {
+    I8 x, y;
+    for (int l = 0; l < 8; ++l) {
+      const size_t i = std::min(b * 8 + size_t(l), n - 1);
+      x.set(l, int32_t(i % in.width)), y.set(l, int32_t(i / in.width));
+    }
+    return L::filter(cs, gs, x, y, int(in.width), int(in.height), int(v.settings.filterRadius), mode, v.planeTolerance);
+  });
 }
 }  // namespace
 
@@ -47,19 +99,13 @@ emu::Texture shadowMapArray(const ShadowMaps& maps) {
 
 VisibilityImage visibilityFitEmu(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v,
                                  const emu::DeviceProfile& dev) {
-  using V3x = shade::V3<emu::F32<8>>;
-  const shade::Sampler2D mapS = environmentSampler(maps, dev, false), dataS = environmentSampler(*v.data, dev, false);
-  const shade::x8::VisSettings s{uint32_t(maps.layers()), maps.width(), v.settings.fitCosine ? shade::x8::kVisFitVCos : shade::x8::kVisFitV,
-                                 v.biasConst, v.biasSlope};
-  return perPixelBlocks(g.width, g.height, dev, [&](size_t b, size_t n) {
-    V3x p, nrm;
-    for (int l = 0; l < 8; ++l) {
-      const float* t = g.texels.data() + std::min(b * 8 + size_t(l), n - 1) * kGbufFloats;
-      p.x.set(l, t[0]), p.y.set(l, t[1]), p.z.set(l, t[2]);
-      nrm.x.set(l, t[4]), nrm.y.set(l, t[5]), nrm.z.set(l, t[6]);
-    }
-    return shade::x8::visFit(mapS, dataS, s, p, nrm);
-  });
+  notePass("visibility-fit");
+  return visibilityFitLanes<X8Lanes>(g, maps, v, dev);
+}
+
+VisibilityImage visibilityFitCounted(const GBuffer& g, const emu::Texture& maps, const VisibilitySetup& v,
+                                     const emu::DeviceProfile& dev) {
+  return visibilityFitLanes<CountedLanes>(g, maps, v, dev);
 }
 
 emu::Texture visibilityCoeffTexture(const VisibilityImage& in) {
@@ -83,19 +129,14 @@ emu::Texture gbufferPositionNormalTexture(const GBuffer& g) {
 VisibilityImage visibilityFilterEmu(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v,
                                     const emu::DeviceProfile& dev) {
   if (v.settings.filterRadius == 0) return in;
-  using I8 = emu::I32<8>;
-  const emu::Texture ct = visibilityCoeffTexture(in), gt = gbufferPositionNormalTexture(g);
-  const shade::Sampler2D cs = environmentSampler(ct, dev, false), gs = environmentSampler(gt, dev, false);
-  const uint32_t mode = v.settings.filterEdgeAware ? shade::x8::kVisFilterEdge : shade::x8::kVisFilterBox;
-  return perPixelBlocks(in.width, in.height, dev, [&](size_t b, size_t n) {
-    I8 x, y;
-    for (int l = 0; l < 8; ++l) {
-      const size_t i = std::min(b * 8 + size_t(l), n - 1);
-      x.set(l, int32_t(i % in.width)), y.set(l, int32_t(i / in.width));
-    }
-    return shade::x8::visFilter(cs, gs, x, y, int(in.width), int(in.height), int(v.settings.filterRadius), mode,
-                                v.planeTolerance);
-  });
+  notePass("visibility-filter");
+  return visibilityFilterLanes<X8Lanes>(g, in, v, dev);
+}
+
+VisibilityImage visibilityFilterCounted(const GBuffer& g, const VisibilityImage& in, const VisibilitySetup& v,
+                                        const emu::DeviceProfile& dev) {
+  if (v.settings.filterRadius == 0) return in;
+  return visibilityFilterLanes<CountedLanes>(g, in, v, dev);
 }
 
 VisibilityImage visibilityEmu(const Scene& scene, const GBuffer& g, const VisibilitySetup& v, const emu::DeviceProfile& dev,

@@ -1,5 +1,7 @@
 #include "vk/context.h"
 
+#include <chrono>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -511,6 +513,7 @@ void Kernel::run(std::span<const Binding> bindings, const void* push, uint32_t c
   vkUpdateDescriptorSets(dev, uint32_t(writes.size()), writes.data(), 0, nullptr);
   VkShaderStageFlags stageBit = stage_ == Stage::Compute ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
   if (stage_ == Stage::Compute) {
+    const auto t0 = std::chrono::steady_clock::now();
     ctx_.submit([&](VkCommandBuffer cb) {
       vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
       vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeLayout_, 0, 1, &set, 0, nullptr);
@@ -519,6 +522,8 @@ void Kernel::run(std::span<const Binding> bindings, const void* push, uint32_t c
       VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER, nullptr, VK_ACCESS_SHADER_WRITE_BIT, VK_ACCESS_HOST_READ_BIT};
       vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &mb, 0, nullptr, 0, nullptr);
     });
+    if (DispatchLog* l = DispatchLog::active())
+      l->ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   } else {
     uint32_t w = std::min(width, count), h = (count + w - 1) / w;
     buildFragmentTarget(w, h);

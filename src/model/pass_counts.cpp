@@ -1,0 +1,209 @@
+#include "model/pass_counts.h"
+
+#include <cstring>
+#include <memory>
+
+#include "inputs/glints.h"
+#include "inputs/material.h"
+#include "inputs/paraboloid.h"
+#include "inputs/sh_irradiance.h"
+#include "inputs/shade_inputs.h"
+#include "inputs/visibility.h"
+#include "passes/gbuffer.h"
+#include "passes/mips.h"
+#include "passes/shadow.h"
+#include "passes/visibility.h"
+
+namespace shadetwin::model {
+namespace {
+
+struct Checker {
+  FrameCounts& f;
+  void operator()(const std::string& pass, const float* a, const float* b, size_t n) {
+    size_t same = 0;
+    for (size_t i = 0; i < n; ++i) same += std::memcmp(a + i, b + i, 4) == 0;
+    f.compared += n, f.identical += same;
+    if (same != n) f.differing.push_back(pass);
+  }
+  void operator()(const std::string& pass, const std::vector<float>& a, const std::vector<float>& b) {
+    if (a.size() != b.size()) {
+      f.differing.push_back(pass + " (size)");
+      return;
+    }
+    (*this)(pass, a.data(), b.data(), a.size());
+  }
+};
+
+void addRaster(PassCounts& c, const emu::RasterStats& r) {
+  c.triangles += r.trianglesIn;
+  c.fragments += r.fragments;
+  c.helperLanes += 4 * r.quads - r.fragments;
+}
+
+// A MIP chain's downsampling dispatches (one per level below 0), counted into `c`; returns the chain.
+std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float>& level0, uint32_t w, uint32_t h, uint32_t layers) {
+  std::vector<std::vector<float>> chain;
+  addTicks(c, countedTicks([&] { chain = mipChainCpu(level0, w, h, layers, 0); }), 8);
+  for (size_t l = 1; l < chain.size(); ++l) {
+    const uint32_t dw = std::max(1u, w >> l), dh = std::max(1u, h >> l);
+    c.invocations += uint64_t((dw + 7) / 8 * 8) * dh * layers;
+    c.bytesWritten += chain[l].size() * 4;
+    c.bytesRead += chain[l - 1].size() * 4;
+    ++c.dispatches;
+  }
+  return chain;
+}
+
+}  // namespace
+
+FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
+  FrameCounts f;
+  Checker check{f};
+  // G-buffer: every object one draw; vertex invocations and fragment lanes (helpers included) at one lane per tick.
+  GbufferStats gs;
+  PassCounts gb;
+  gb.pass = "gbuffer";
+  GBuffer counted;
+  addTicks(gb, countedTicks([&] { counted = gbufferCounted(scene, dev, &gs); }), 1);
+  const GBuffer g = gbufferEmu(scene, dev);
+  check("gbuffer", counted.texels, g.texels);
+  check("gbuffer depth", counted.depth, g.depth);
+  addRaster(gb, gs.raster);
+  for (const Object& o : scene.objects) {
+    const Mesh& m = scene.meshes[o.mesh];
+    gb.invocations += m.positions.size();
+    gb.bytesRead += m.positions.size() * sizeof(VertexGpu) + m.indices.size() * 4;
+  }
+  gb.invocations += 4 * gs.raster.quads;
+  gb.dispatches = scene.objects.size();
+  // Covered pixels write the attachments; the targets are cleared and copied out.
+  gb.bytesWritten = gs.raster.fragments * (uint64_t(kGbufFloats) * 4 + 4);
+  gb.attachmentBytes = uint64_t(scene.width) * scene.height * (uint64_t(kGbufFloats) * 4 + 4);
+  f.passes.push_back(gb);
+
+  // The technique's inputs, as shadeInputsEmu builds them (inputs/shade_inputs.cpp).
+  const ShadeInputs in = shadeInputsEmu(scene, env, dev);
+  if (in.atlas) {
+    PassCounts pa;
+    pa.pass = "paraboloid";
+    std::vector<float> atlas;
+    addTicks(pa, countedTicks([&] { atlas = paraboloidAtlasCounted(env, dev, scene.fisFaceSize); }), 8);
+    const size_t n = 2 * size_t(scene.fisFaceSize) * scene.fisFaceSize;
+    check("paraboloid", atlas.data(), reinterpret_cast<const float*>(in.atlas->levels()[0].data()), 4 * n);
+    pa.invocations = (n + 7) / 8 * 8, pa.dispatches = 1, pa.bytesWritten = 16 * n;
+    f.passes.push_back(pa);
+    PassCounts mp;
+    mp.pass = "mips";
+    const auto chain = countMips(mp, atlas, 2 * scene.fisFaceSize, scene.fisFaceSize, 1);
+    for (size_t l = 1; l < chain.size(); ++l)
+      check("mips", chain[l].data(), reinterpret_cast<const float*>(in.atlas->levels()[l].data()), chain[l].size());
+    f.passes.push_back(mp);
+
+    PassCounts pr, rd;
+    pr.pass = "sh-project", rd.pass = "sh-reduce";
+    std::array<uint64_t, opcount::kKinds> project{};
+    ShIrradiance sh;
+    const auto all = countedTicks([&] {
+      sh = shIrradianceCounted(env, dev, [&] { project = opcount::counts; });
+    });
+    std::array<uint64_t, opcount::kKinds> reduce{};
+    for (int k = 0; k < opcount::kKinds; ++k) reduce[size_t(k)] = all[size_t(k)] - project[size_t(k)];
+    addTicks(pr, project, 8);
+    addTicks(rd, reduce, 1);
+    check("sh", sh.c.data(), in.sh.c.data(), sh.c.size());
+    check("sh", sh.band3.data(), in.sh.band3.data(), sh.band3.size());
+    pr.invocations = (env.height() + 7) / 8 * 8, pr.dispatches = 1, pr.bytesWritten = uint64_t(env.height()) * 256;
+    rd.invocations = 16, rd.dispatches = 1, rd.bytesRead = rd.bytesWritten = uint64_t(env.height()) * 256;
+    f.passes.push_back(pr);
+    f.passes.push_back(rd);
+  }
+  if (in.glints) {
+    PassCounts gl;
+    gl.pass = "glint-lighting";
+    GlintLightingTable t;
+    addTicks(gl, countedTicks([&] { t = glintLightingCounted(env, dev, in.glints->lightingSpec); }), 8);
+    const GlintLightingTable e = glintLightingEmu(env, dev, in.glints->lightingSpec);
+    check("glint-lighting", t.rgba, e.rgba);
+    const uint32_t views = t.spec.rings * t.spec.sectors;
+    const uint32_t eh = env.levelHeight(t.spec.level), rows = t.spec.bandRows ? t.spec.bandRows : eh;
+    const uint32_t bands = (eh + rows - 1) / rows;
+    gl.invocations = uint64_t((views + 7) / 8 * 8) * (t.spec.order + 1) * bands;
+    gl.dispatches = bands, gl.bytesWritten = uint64_t(t.bytes()) * bands, gl.bytesRead = uint64_t(t.bytes()) * (bands - 1);
+    f.passes.push_back(gl);
+  }
+  if (in.maps) {
+    const MaterialMapImages m = loadMaterialMaps(scene);
+    if (m.width > 1 || m.height > 1) {
+      PassCounts mp;
+      mp.pass = "mips";
+      const auto chain = countMips(mp, m.texels, m.width, m.height, m.layers);
+      for (size_t l = 1; l < chain.size(); ++l)
+        check("mips", chain[l].data(), reinterpret_cast<const float*>(in.maps->levels()[l].data()), chain[l].size());
+      bool merged = false;
+      for (PassCounts& p : f.passes)
+        if (p.pass == "mips") {
+          for (int k = 0; k < opcount::kKinds; ++k) p.ops[size_t(k)] += mp.ops[size_t(k)];
+          p.invocations += mp.invocations, p.dispatches += mp.dispatches;
+          p.bytesRead += mp.bytesRead, p.bytesWritten += mp.bytesWritten;
+          merged = true;
+        }
+      if (!merged) f.passes.push_back(mp);
+    }
+  }
+
+  // Visibility: the K shadow maps, the fit, the filter (passes/visibility_emu.cpp's order).
+  std::unique_ptr<VisibilityImage> vis;
+  if (in.visibility) {
+    const VisibilitySetup& v = *in.visibility;
+    PassCounts sp;
+    sp.pass = "shadow";
+    ShadowStats ss;
+    ShadowMaps sm;
+    addTicks(sp, countedTicks([&] { sm = shadowCounted(scene, v.directions, v.settings.size, dev, &ss); }), 1);
+    const ShadowMaps se = shadowEmu(scene, v.directions, v.settings.size, dev);
+    for (size_t k = 0; k < sm.maps.size(); ++k) check("shadow", sm.maps[k], se.maps[k]);
+    addRaster(sp, ss.raster);
+    for (const Object& o : scene.objects) {
+      const Mesh& m = scene.meshes[o.mesh];
+      sp.invocations += m.positions.size() * v.directions.size();
+      sp.bytesRead += (m.positions.size() * sizeof(VertexGpu) + m.indices.size() * 4) * v.directions.size();
+    }
+    sp.invocations += 4 * ss.raster.quads;
+    sp.dispatches = scene.objects.size() * v.directions.size();
+    sp.bytesWritten = ss.raster.fragments * 4;  // depth writes; the maps are cleared and copied out
+    sp.attachmentBytes = uint64_t(v.settings.size) * v.settings.size * 4 * v.directions.size();
+    f.passes.push_back(sp);
+
+    const emu::Texture maps = shadowMapArray(se);
+    const uint64_t pixels = uint64_t(g.width) * g.height;
+    PassCounts fp;
+    fp.pass = "visibility-fit";
+    VisibilityImage fit;
+    addTicks(fp, countedTicks([&] { fit = visibilityFitCounted(g, maps, v, dev); }), 8);
+    const VisibilityImage fitE = visibilityFitEmu(g, maps, v, dev);
+    check("visibility-fit", fit.coeffs, fitE.coeffs);
+    fp.invocations = (pixels + 7) / 8 * 8, fp.dispatches = 1, fp.bytesRead = pixels * 32, fp.bytesWritten = pixels * 64;
+    f.passes.push_back(fp);
+    vis = std::make_unique<VisibilityImage>(fitE);
+    if (v.settings.filterRadius) {
+      PassCounts fl;
+      fl.pass = "visibility-filter";
+      VisibilityImage filt;
+      addTicks(fl, countedTicks([&] { filt = visibilityFilterCounted(g, fitE, v, dev); }), 8);
+      const VisibilityImage filtE = visibilityFilterEmu(g, fitE, v, dev);
+      check("visibility-filter", filt.coeffs, filtE.coeffs);
+      fl.invocations = (pixels + 7) / 8 * 8, fl.dispatches = 1, fl.bytesWritten = pixels * 64;
+      f.passes.push_back(fl);
+      *vis = filtE;
+    }
+  }
+
+  if (scene.technique == "glints-gxd") return f;  // its shading is the host's double-precision ground truth
+  std::vector<float> image;
+  PassCounts sc = countShadePass(scene, g, in, dev, vis.get(), &image);
+  check("shade", image, shadeEmu(scene, g, in, dev, vis.get()));
+  f.passes.push_back(sc);
+  return f;
+}
+
+}  // namespace shadetwin::model

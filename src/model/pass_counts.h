@@ -1,0 +1,51 @@
+// What each pass of a frame does, counted (issue 19): every emulated pass's driver compiled over the counting lane
+// types (model/op_count.h, model/counted.h) as well as over the emulator's, so the counts are those of the code the
+// GPU runs: operations by class, texture lookups by filter, invocations, dispatches, buffer bytes and, for raster
+// passes, triangles, fragments and helper lanes. Counting changes no bit: every counted pass returns the emulator's
+// output (countFrame checks it; ctest model_* and PassCounts.*).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "emu/device_profile.h"
+#include "emu/texture.h"
+#include "model/op_count.h"
+#include "passes/shade.h"
+#include "scene/scene.h"
+
+namespace shadetwin::model {
+
+struct PassCounts {
+  std::string pass;  // gbuffer, shadow, visibility-fit, visibility-filter, paraboloid, mips, sh-project, sh-reduce, glint-lighting, shade
+  // Lane operations by kind: a vector operation over N lanes (live, tail or helper) counts N; the texture kinds are
+  // per lane already (lookups by filter, texels read).
+  std::array<double, opcount::kKinds> ops{};
+  uint64_t invocations = 0;   // compute: invocations incl. the tail; raster: vertex invocations + fragment lanes
+  uint64_t dispatches = 0;    // dispatches or draws
+  uint64_t bytesRead = 0, bytesWritten = 0;  // buffer traffic (texture reads are in the lookups)
+  uint64_t attachmentBytes = 0;  // raster passes: render-target bytes cleared and copied out
+  uint64_t triangles = 0, fragments = 0, helperLanes = 0;  // raster passes: triangles in, covered pixels, quad helpers
+};
+
+/// Runs `f` on the calling thread alone (a TBB arena of one) with the counters cleared; returns its ticks.
+std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& f);
+/// Adds ticks of a run whose vectors have `lanes` lanes (ALU kinds are multiplied, texture kinds are per lane).
+void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks, double lanes);
+
+/// The shading pass of scene.technique counted (model/shade_counts.cpp); `out` (optional) receives its image.
+PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
+                          const VisibilityImage* vis = nullptr, std::vector<float>* out = nullptr);
+
+struct FrameCounts {
+  std::vector<PassCounts> passes;  // in the order the frame runs them; a pass run several times (mips) is one entry
+  size_t compared = 0, identical = 0;  // output values of the counted passes against the emulator's
+  std::vector<std::string> differing;  // passes whose counted output differs (empty when counting changed no bit)
+};
+/// Every device pass of one emulated frame of `scene` (its technique, visibility block, maps) counted, each against the
+/// emulator's own run of the same pass.
+FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev);
+
+}  // namespace shadetwin::model

@@ -1,0 +1,110 @@
+// The performance model's coverage (issue 19): every device pass an emulated frame runs has a counted run
+// (model/pass_counts.h countFrame), the counted runs give the emulator's bits, and the counts are the work's real
+// shape (lanes, helpers, dispatches). A pass added to the frame without a counting run fails here.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "emu/device_profile.h"
+#include "inputs/environment.h"
+#include "inputs/shade_inputs.h"
+#include "model/pass_counts.h"
+#include "passes/gbuffer.h"
+#include "passes/shade.h"
+#include "passes/visibility.h"
+#include "scene/scene.h"
+#include "util/pass_log.h"
+
+namespace {
+using namespace shadetwin;
+
+struct Case {
+  const char* scene;
+  const char* technique;  // "" : the scene's
+};
+
+Scene small(const Case& c) {
+  Scene s = loadScene(std::string(SHADETWIN_SOURCE_DIR) + "/scenes/" + c.scene);
+  s.width = 40, s.height = 24;
+  if (*c.technique) s.technique = c.technique;
+  s.fisSamples = std::min(s.fisSamples, 8u);
+  s.misSamples = std::min(s.misSamples, 4u);
+  s.glintOrder = std::min(s.glintOrder, 6u);  // a small lighting table: the counted run is one thread
+  s.glintViewRings = std::min(s.glintViewRings, 9u), s.glintViewSectors = std::min(s.glintViewSectors, 16u);
+  return s;
+}
+
+// The passes the emulated frame runs (cli/render.cpp's emulator branch), by the names they note.
+std::set<std::string> framePasses(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
+  PassLog log;
+  const GBuffer g = gbufferEmu(scene, dev);
+  const ShadeInputs in = shadeInputsEmu(scene, env, dev);
+  std::unique_ptr<VisibilityImage> vis;
+  if (in.visibility) vis = std::make_unique<VisibilityImage>(visibilityEmu(scene, g, *in.visibility, dev));
+  if (scene.technique != "glints-gxd") shadeEmu(scene, g, in, dev, vis.get());
+  return {log.names.begin(), log.names.end()};
+}
+
+class PassCountsCoverage : public ::testing::TestWithParam<Case> {};
+
+TEST_P(PassCountsCoverage, EveryPassTheFrameRunsIsCountedWithTheEmulatorsBits) {
+  const Scene scene = small(GetParam());
+  std::ostringstream quiet;
+  const EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+  for (const emu::DeviceProfile* dev : {&emu::lavapipeProfile(), &emu::swiftshaderProfile()}) {
+    const std::set<std::string> ran = framePasses(scene, *env.texture, *dev);
+    const model::FrameCounts f = model::countFrame(scene, *env.texture, *dev);
+    std::set<std::string> counted;
+    for (const model::PassCounts& p : f.passes) {
+      counted.insert(p.pass);
+      double alu = 0;
+      for (int k = 0; k < opcount::kTexLookup; ++k) alu += p.ops[size_t(k)];
+      EXPECT_GT(alu, 0.0) << p.pass;  // a counted run that counted nothing is not a counting run
+      EXPECT_GT(p.invocations, 0u) << p.pass;
+      EXPECT_GT(p.dispatches, 0u) << p.pass;
+    }
+    EXPECT_EQ(ran, counted) << GetParam().scene << " " << scene.technique << " on " << dev->name;
+    EXPECT_TRUE(f.differing.empty()) << f.differing.front();
+    EXPECT_GT(f.compared, 0u);
+    EXPECT_EQ(f.identical, f.compared);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, PassCountsCoverage,
+                         ::testing::Values(Case{"bunny.json", ""}, Case{"bunny.json", "mirror"}, Case{"textured.json", ""},
+                                           Case{"ward_spheres.json", ""}, Case{"ward_spheres.json", "env"},
+                                           Case{"glints_torus.json", ""}, Case{"contact.json", "stochastic"}),
+                         [](const auto& i) {
+                           std::string n = std::string(i.param.scene) + "_" + (*i.param.technique ? i.param.technique : "own");
+                           for (char& c : n)
+                             if (!isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return n;
+                         });
+
+// The raster passes' shape: every quad is 4 lanes (covered pixels + helpers), the G-buffer's fragment lanes run the
+// fragment shader (one lane per tick), and the shading pass's 8-lane vectors include the tail lanes.
+TEST(PassCounts, RasterAndComputeShapes) {
+  Scene scene = small({"bunny.json", ""});
+  scene.width = 37, scene.height = 19;  // 703 pixels: the last 8-lane vector has 7 tail lanes
+  std::ostringstream quiet;
+  const EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+  const model::FrameCounts f = model::countFrame(scene, *env.texture, emu::lavapipeProfile());
+  GbufferStats gs;
+  gbufferEmu(scene, emu::lavapipeProfile(), &gs);
+  for (const model::PassCounts& p : f.passes) {
+    if (p.pass == "gbuffer") {
+      EXPECT_EQ(p.fragments, gs.raster.fragments);
+      EXPECT_EQ(p.fragments + p.helperLanes, 4 * gs.raster.quads);
+      EXPECT_EQ(p.dispatches, scene.objects.size());
+      EXPECT_GT(p.helperLanes, 0u);
+    }
+    if (p.pass == "shade") EXPECT_EQ(p.invocations, 704u);
+    if (p.pass == "shadow") EXPECT_EQ(p.dispatches, scene.objects.size() * uint64_t(scene.visMaps));
+  }
+}
+
+}  // namespace
