@@ -42,6 +42,8 @@ struct Mask {
   bool lane(int i) const { return v[i] != 0; }
   /// Whether any lane is set: only for skipping work whose every effect is a select on this mask
   /// (the dialect's IF_ANY), never for per-lane control flow.
+  /// The shading dialect's IF_ANY hook (src/shade/prelude.h): anyLane here.
+  friend bool ifAnyScope(Mask m) { return anyLane(m); }
   friend bool anyLane(Mask m) {
     for (int i = 0; i < N; ++i)
       if (m.v[i]) return true;
@@ -127,6 +129,8 @@ template <int N> inline U32<N> floatBitsToUint(F32<N> x) { return U32<N>((typena
 template <int N> inline I32<N> floatBitsToInt(F32<N> x) { return I32<N>((typename I32<N>::V)x.v); }
 template <int N> inline F32<N> uintBitsToFloat(U32<N> x) { return F32<N>((typename F32<N>::V)x.v); }
 template <int N> inline F32<N> intBitsToFloat(I32<N> x) { return F32<N>((typename F32<N>::V)x.v); }
+/// The shading dialect's FOR hook (src/shade/prelude.h): nothing for the emulator's lanes.
+template <int N> inline int loopScope(F32<N>) { return 0; }
 
 /// High 32 bits of the 64-bit product (GLSL umulExtended's msb).
 template <int N>

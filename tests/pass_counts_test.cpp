@@ -102,8 +102,12 @@ TEST(PassCounts, RasterAndComputeShapes) {
       EXPECT_EQ(p.dispatches, scene.objects.size());
       EXPECT_GT(p.helperLanes, 0u);
     }
-    if (p.pass == "shade") EXPECT_EQ(p.invocations, 704u);
-    if (p.pass == "shadow") EXPECT_EQ(p.dispatches, scene.objects.size() * uint64_t(scene.visMaps));
+    if (p.pass == "shade") {
+      EXPECT_EQ(p.invocations, 704u);
+    }
+    if (p.pass == "shadow") {
+      EXPECT_EQ(p.dispatches, scene.objects.size() * uint64_t(scene.visMaps));
+    }
   }
 }
 

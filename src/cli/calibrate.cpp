@@ -29,7 +29,7 @@ struct Push {
 };
 static_assert(sizeof(Push) == 32, "calibrate.comp push constants");
 
-enum Kind : uint32_t { kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK };
+enum Kind : uint32_t { kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK, kBranchUnrolledK };
 
 // The host's last-level cache (sysfs), for the description: line size and capacity.
 void hostCache(int& lineBytes, double& bytes) {
@@ -55,14 +55,15 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   log << "calibrate: " << ctx.deviceName() << (opts.quick ? " (quick)" : "") << std::endl;
   const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-  std::unique_ptr<vk::Kernel> kernels[kEmptyK + 1];  // one pipeline per kind (specialization constant 0)
-  auto kernel = [&](uint32_t kind) -> vk::Kernel& {
-    if (!kernels[kind]) {
-      const uint32_t spec[] = {kind};
-      kernels[kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout, sizeof(Push),
-                                                   std::span<const uint32_t>{}, spec);
+  // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
+  std::unique_ptr<vk::Kernel> kernels[2][kBranchUnrolledK + 1];
+  auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
+    if (!kernels[dependent][kind]) {
+      const uint32_t spec[] = {kind, dependent};
+      kernels[dependent][kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout,
+                                                              sizeof(Push), std::span<const uint32_t>{}, spec);
     }
-    return *kernels[kind];
+    return *kernels[dependent][kind];
   };
   // A 256^2 RGBA32F texture with its full chain of random texels.
   const uint32_t T = 256;
@@ -101,7 +102,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     std::vector<double> t;
     for (int r = 0; r < 4; ++r) {  // run 0 warms up (pipeline, caches), then the median of three
       const auto t0 = std::chrono::steady_clock::now();
-      kernel(p.kind).run(b, &p, n);
+      kernel(p.kind, p.pad).run(b, &p, n);
       t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     t.erase(t.begin());
@@ -115,8 +116,8 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   std::sort(empties.begin(), empties.end());
   const double dispatch = empties[empties.size() / 2];
   // Iterations grow until a run takes `target` seconds; the rate is work / (time - dispatch).
-  auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod) {
-    Push p{kind, 16, 0, 0, c, lod, 0.0173f, 0.0f};
+  auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod, uint32_t dependent = 0) {
+    Push p{kind, 16, 0, dependent, c, lod, 0.0173f, 0.0f};
     double t = 0.0;
     for (;;) {
       t = timeRun(p, s, count);
@@ -147,6 +148,31 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     const double perStep = 4.0 / mixed, fadd = 2.0 / ops[model::kFAdd];
     ops[model::kSelect] = ops[model::kFCmp] = 2.0 / std::max(perStep - fadd, perStep * 0.25);
   }
+  {  // Latencies: the same kernels on one chain (DEPENDENT). Per chain step a device vector waits for the previous
+     // step, so one core's step time is cores x lanes / (steps per second). Steps: fadd, fmul, imul (squaring) one
+     // operation; ialu three dependent ones; cvt an fmul then two conversions; select a compare beside an fadd, then
+     // the select (compare latency taken as fadd's).
+    const double perCore = double(d.cores) * d.lanes;
+    auto step = [&](uint32_t k, float c) { return perCore / rate(k, 32.0, nearest->handle(), c, 0.0f, 1); };
+    auto& lat = d.latencySeconds;
+    lat[model::kFAdd] = lat[model::kFCmp] = step(kFAddK, 1.0e-3f);
+    lat[model::kFMul] = step(kFMulK, 1.0000001f);
+    lat[model::kIAlu] = step(kIAluK, 1.5f) / 3.0;
+    lat[model::kIMul] = step(kIMulK, 1.5f);
+    lat[model::kCvt] = std::max(0.5 * (step(kCvtK, 1.0001f) - lat[model::kFMul]), 0.1 * lat[model::kFMul]);
+    lat[model::kSelect] = std::max(step(kSelectK, 0.75f) - lat[model::kFAdd], 0.1 * lat[model::kFAdd]);
+    // The window: iterations independent of each other, each a chain of L = 64 dependent fadds. A core that keeps W
+    // operations in flight overlaps W / L chains, so an iteration takes L^2 latency / W (never less than its issue
+    // time, never more than L latency): W = L^2 latency / t. In counted 8-lane operations: W lanes / 8.
+    const double L = 64.0;
+    const double tIter = perCore / rate(kWindowK, 1.0, nearest->handle(), 1.0e-3f, 0.0f);
+    const double wDevice = std::clamp(L * L * lat[model::kFAdd] / tIter, L, 16.0 * L);
+    d.windowOps = wDevice * d.lanes / 8.0;
+    log << "  latency  ";
+    for (int c = 0; c < model::kOpClasses; ++c) log << " " << model::kOpClassNames[c] << " " << lat[size_t(c)] * 1e9 << " ns";
+    log << "\n  window    " << d.windowOps << " counted operations (" << wDevice << " device vector operations; an iteration "
+        << tIter * 1e9 << " ns)\n";
+  }
   d.lookupsPerSecond[model::kNearest] = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
   d.lookupsPerSecond[model::kBilinear] = rate(kTexK, 1.0, bilinear->handle(), 1.0f, 0.0f);
   d.lookupsPerSecond[model::kTrilinear] = rate(kTexK, 1.0, trilinear->handle(), 1.0f, 1.5f);
@@ -156,6 +182,21 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     d.bandwidthBytesPerSecond = double(copyVec4s) * 32.0 / std::max(t - dispatch, 1e-9);
   }
   d.dispatchSeconds = dispatch;
+  {  // Blocks no lane takes: the fadd kernel's steps behind a never-true per-lane `if`, inside and around the loop.
+    Push p{kFAddK, opts.quick ? 1u << 10 : 1u << 13, 0, 0, 1.0e-3f, -1.0f, 0.0f, 0.0f};
+    const double work = timeRun(p, nearest->handle(), count) - dispatch;
+    p.kind = kBranchK;
+    const double straight = timeRun(p, nearest->handle(), count) - dispatch;
+    p.kind = kBranchLoopK;
+    const double loop = timeRun(p, nearest->handle(), count) - dispatch;
+    p.kind = kBranchUnrolledK;
+    const double unrolled = timeRun(p, nearest->handle(), count) - dispatch;
+    d.executesEveryBlock = straight > 0.5 * work;
+    log << "  branch    an untaken block costs " << std::setprecision(3) << 100.0 * straight / std::max(work, 1e-12)
+        << "% of its work, an untaken loop " << 100.0 * loop / std::max(work, 1e-12) << "%, an untaken 4-iteration loop "
+        << 100.0 * unrolled / std::max(work, 1e-12) << "%: "
+        << (d.executesEveryBlock ? "every block runs under its mask" : "untaken blocks are skipped") << "\n";
+  }
   {  // Raster rates from synthetic depth-only draws through the shadow pipeline (generated geometry, not a scene):
      // two zero-area triangles (nothing covered: the targets' clear and copy-out alone), many tiny triangles into small maps
      // (triangle-bound) and two large triangles into large maps (coverage-bound). The emulator under the device's

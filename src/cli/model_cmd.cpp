@@ -112,7 +112,7 @@ struct Row {
 // counted pass changed a bit.
 std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, const EnvironmentMap& env, const model::DeviceDesc& desc,
                             vk::Context* ctx, const emu::DeviceProfile& dev, uint32_t repeat, std::ostream& log, bool& same) {
-  const model::FrameCounts fc = model::countFrame(scene, *env.texture, dev);
+  const model::FrameCounts fc = model::countFrame(scene, *env.texture, dev, model::coreModel(desc));
   log << "counted passes: " << fc.identical << "/" << fc.compared << " output values bit-identical to the emulator's";
   for (const std::string& d : fc.differing) log << " (differs: " << d << ")";
   log << "\n";

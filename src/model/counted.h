@@ -23,6 +23,7 @@
   using ::std::uint32_t;                             \
   inline constexpr int kLanes = N;
 
+#define SHADE_RUNTIME_BRDF_KINDS (::opcount::sceneBrdfKinds)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
 SHADE_COUNTED_NS(counted, 8)
@@ -36,6 +37,8 @@ SHADE_COUNTED_NS(counted1, 1)
 }  // namespace shadetwin::shade::counted1
 #pragma GCC diagnostic pop
 #undef SHADE_COUNTED_NS
+#undef kSceneBrdfKinds
+#undef SHADE_RUNTIME_BRDF_KINDS
 
 namespace opcount {
 /// A counted lane value as a float (one-lane builds): what a scalar driver stores.

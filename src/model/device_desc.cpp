@@ -44,7 +44,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
                 "dispatch_seconds", "triangles_per_second", "fragments_per_second", "attachment_bytes_per_second",
-                "units_overlap"},
+                "units_overlap", "latency_seconds", "window_ops", "executes_every_block"},
             path, "");
   DeviceDesc d;
   for (const char* k : {"device", "name", "provenance"})
@@ -52,6 +52,8 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   if (!j.at("verified").is_boolean()) fail(path, "'verified' must be true or false");
   if (!j.at("units_overlap").is_boolean()) fail(path, "'units_overlap' must be true or false");
   d.unitsOverlap = j.at("units_overlap").get<bool>();
+  if (!j.at("executes_every_block").is_boolean()) fail(path, "'executes_every_block' must be true or false");
+  d.executesEveryBlock = j.at("executes_every_block").get<bool>();
   d.device = j.at("device").get<std::string>();
   d.name = j.at("name").get<std::string>();
   d.provenance = j.at("provenance").get<std::string>();
@@ -63,6 +65,9 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   std::set<std::string> ops(std::begin(kOpClassNames), std::end(kOpClassNames));
   checkKeys(j.at("ops_per_second"), ops, path, "ops_per_second.");
   for (int c = 0; c < kOpClasses; ++c) d.opsPerSecond[size_t(c)] = positive(j.at("ops_per_second"), kOpClassNames[c], path, "ops_per_second.");
+  checkKeys(j.at("latency_seconds"), ops, path, "latency_seconds.");
+  for (int c = 0; c < kOpClasses; ++c)
+    d.latencySeconds[size_t(c)] = positive(j.at("latency_seconds"), kOpClassNames[c], path, "latency_seconds.");
   std::set<std::string> filters(std::begin(kTexFilterNames), std::end(kTexFilterNames));
   checkKeys(j.at("lookups_per_second"), filters, path, "lookups_per_second.");
   for (int f = 0; f < kTexFilters; ++f)
@@ -74,6 +79,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   d.trianglesPerSecond = positive(j, "triangles_per_second", path, "");
   d.fragmentsPerSecond = positive(j, "fragments_per_second", path, "");
   d.attachmentBytesPerSecond = positive(j, "attachment_bytes_per_second", path, "");
+  d.windowOps = positive(j, "window_ops", path, "");
   return d;
 }
 
@@ -86,8 +92,9 @@ DeviceDesc loadDeviceDesc(const std::string& path) {
 }
 
 std::string deviceDescJson(const DeviceDesc& d) {
-  json ops = json::object(), lookups = json::object();
+  json ops = json::object(), lookups = json::object(), latency = json::object();
   for (int c = 0; c < kOpClasses; ++c) ops[kOpClassNames[c]] = d.opsPerSecond[size_t(c)];
+  for (int c = 0; c < kOpClasses; ++c) latency[kOpClassNames[c]] = d.latencySeconds[size_t(c)];
   for (int f = 0; f < kTexFilters; ++f) lookups[kTexFilterNames[f]] = d.lookupsPerSecond[size_t(f)];
   json j = {{"device", d.device},
             {"name", d.name},
@@ -105,7 +112,10 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"triangles_per_second", d.trianglesPerSecond},
             {"fragments_per_second", d.fragmentsPerSecond},
             {"attachment_bytes_per_second", d.attachmentBytesPerSecond},
-            {"units_overlap", d.unitsOverlap}};
+            {"units_overlap", d.unitsOverlap},
+            {"latency_seconds", latency},
+            {"window_ops", d.windowOps},
+            {"executes_every_block", d.executesEveryBlock}};
   return j.dump(2) + "\n";
 }
 

@@ -36,6 +36,15 @@ struct DeviceDesc {
   // How the units' times combine: false (software devices: the same cores run arithmetic, texture filtering and
   // memory traffic one after another, so the times add), true (GPUs: separate units overlap, the slowest bounds).
   bool unitsOverlap = false;
+  // The core model of software devices (opcount::Scheduler): seconds from an operation's operands to its result on one
+  // core (dependent-chain microkernels), and how many counted 8-lane operations one core keeps in flight (the window
+  // microkernel). GPUs hide latency across warps: there the model stays throughput-bound and these are not used.
+  std::array<double, kOpClasses> latencySeconds{};
+  double windowOps = 0.0;
+  // Whether the device runs every block of a structured `if` under the lane mask, leaving only loops at once when no
+  // lane is active (lavapipe, SwiftShader: their shader compilers never branch around a block), or skips a block no
+  // lane of a vector takes (GPUs). Software devices: calibrate's branch kernels measure it.
+  bool executesEveryBlock = false;
 };
 
 /// Parses a description; throws std::runtime_error naming `path` and the key for a missing or unknown key,

@@ -1,6 +1,7 @@
 #include "model/model.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace shadetwin::model {
 
@@ -17,10 +18,39 @@ std::array<double, kOpClasses> scalarOps(const PassCounts& c) {
   return o;
 }
 
+namespace {
+OpClass classOf(opcount::Kind k) {
+  switch (k) {
+    case opcount::kFAdd: return kFAdd;
+    case opcount::kFMul: return kFMul;
+    case opcount::kFCmp: return kFCmp;
+    case opcount::kIMul: return kIMul;
+    case opcount::kCvt: return kCvt;
+    case opcount::kSel: return kSelect;
+    default: return kIAlu;  // integer ALU and mask logic
+  }
+}
+}  // namespace
+
+CoreModel coreModel(const DeviceDesc& d) {
+  CoreModel m;
+  m.on = !d.unitsOverlap;
+  m.executeEveryBlock = d.executesEveryBlock;
+  for (int k = 0; k < opcount::kTexLookup; ++k) {
+    const OpClass c = classOf(opcount::Kind(k));
+    m.interval[size_t(k)] = 8.0 * double(d.cores) / d.opsPerSecond[size_t(c)];  // one 8-lane operation on one core
+    m.latency[size_t(k)] = d.latencySeconds[size_t(c)];
+  }
+  m.window = uint32_t(std::max(1.0, std::round(d.windowOps)));
+  return m;
+}
+
 Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   Prediction p;
   const auto ops = scalarOps(c);
   for (int k = 0; k < kOpClasses; ++k) p.aluSeconds += ops[size_t(k)] / d.opsPerSecond[size_t(k)];
+  // Scheduled on the device's core model: that time, over the cores (never below the issue-rate sum above).
+  if (!d.unitsOverlap && c.scheduledSeconds > 0) p.aluSeconds = std::max(p.aluSeconds, c.scheduledSeconds / double(d.cores));
   p.textureSeconds = c.ops[opcount::kTexNearest] / d.lookupsPerSecond[kNearest] +
                      c.ops[opcount::kTexBilinear] / d.lookupsPerSecond[kBilinear] +
                      c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear];

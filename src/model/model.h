@@ -16,6 +16,10 @@ struct Prediction {
 
 /// Scalar (lane) operations of each model class from a pass's counts (mask logic is integer ALU).
 std::array<double, kOpClasses> scalarOps(const PassCounts& c);
+/// On a software device, a pass's 8-lane operations are also scheduled on one core (opcount::Scheduler): latency,
+/// dependencies and the window count, and the ALU term is that time over the cores; a GPU hides latency across warps
+/// and stays throughput-bound (the model is off).
+CoreModel coreModel(const DeviceDesc& d);
 Prediction predict(const PassCounts& c, const DeviceDesc& d);
 
 }  // namespace shadetwin::model

@@ -6,9 +6,11 @@
 // IF_ANY skips per vector of 8 pixels), so counts / 8 are operations per pixel as executed. Texture
 // lookups are counted per lane with the texels the filter reads (bilinear 4 per level, trilinear 8).
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "emu/lanes.h"
 #include "lanes/native_exact.h"
@@ -23,64 +25,144 @@ inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul",
 inline thread_local std::array<uint64_t, kKinds> counts{};
 inline void tick(Kind k, uint64_t n = 1) { counts[size_t(k)] += n; }
 
+// An out-of-order core running the counted vector operations (the performance model's latency-aware ALU time,
+// model/model.h): operations dispatch in program order at the device's issue rate (interval: seconds of issue per
+// operation of that kind on one core), at most `window` of them in flight (a reorder window: an operation dispatches
+// once the one `window` earlier has retired), each starts when its operands are ready and takes its kind's latency;
+// retirement is in order. Every counted value carries the time it is ready (`t`); values from memory or constants are
+// ready at once. Off unless a counted run switches it on; it never changes a computed bit.
+struct Scheduler {
+  bool on = false;
+  std::array<double, kKinds> latency{}, interval{};
+  uint32_t window = 256;
+  std::vector<double> retired;  // retire time of the last `window` operations (a ring)
+  uint64_t n = 0;
+  double dispatch = 0, lastRetire = 0;
+  void start() {
+    retired.assign(window, 0.0);
+    n = 0, dispatch = 0, lastRetire = 0;
+  }
+  double issue(Kind k, double ready) {
+    double d = dispatch;
+    if (n >= window) d = std::max(d, retired[n % window]);
+    const double done = std::max(d, ready) + latency[size_t(k)];
+    dispatch = d + interval[size_t(k)];
+    lastRetire = std::max(lastRetire, done);
+    retired[n % window] = lastRetire;
+    ++n;
+    return done;
+  }
+};
+inline thread_local Scheduler sched;
+
+// How the device runs the dialect's IF_ANY blocks (a structured `if` in GLSL), set per counted run. false: a vector
+// skips a block none of its lanes takes (a GPU's warp branches around it). true: the device runs every block under
+// its lane mask and only a loop whose lanes are all inactive exits at once (lavapipe's gallivm and SwiftShader's
+// SpirvShader; calibrate's branch kernels measure it), so an untaken block's straight-line operations count and the
+// operations of loops inside it do not. The C++ still computes the block (IF_ANY's contract: every effect is a select
+// on the mask), so no bit changes.
+inline thread_local bool executeEveryBlock = false;
+// The pipeline's kSceneBrdfKinds specialization constant (shade/prelude.h) for the counting build (model/counted.h):
+// the BRDF kinds the scene's materials use; the others are compiled out on the GPU. Set per counted run.
+inline thread_local uint32_t sceneBrdfKinds = 0xffffffffu;
+inline thread_local int loopDepth = 0;
+inline thread_local int deadBase = -1;  // loop depth where the outermost untaken block began; -1: in none
+inline bool counting() { return deadBase < 0 || loopDepth <= deadBase; }
+
+/// Counts one vector operation of kind k whose operands are ready at `ready`; returns when its result is.
+inline double op(Kind k, double ready) {
+  if (!counting()) return ready;  // inside a loop of an untaken block: the device does not run it
+  tick(k);
+  return sched.on ? sched.issue(k, ready) : 0.0;
+}
+inline double op(Kind k, double a, double b) { return op(k, a > b ? a : b); }
+inline double op(Kind k, double a, double b, double c) { return op(k, a > b ? (a > c ? a : c) : (b > c ? b : c)); }
+
 template <int N> struct F;
 template <int N> struct U;
 template <int N> struct I;
 
+struct LoopScope {
+  LoopScope() { ++loopDepth; }
+  ~LoopScope() { --loopDepth; }
+  LoopScope(const LoopScope&) = delete;
+  LoopScope& operator=(const LoopScope&) = delete;
+};
+struct IfAnyScope {
+  bool taken, opened;  // opened: this block began the untaken region
+  IfAnyScope(bool t, bool o) : taken(t), opened(o) {}
+  ~IfAnyScope() {
+    if (opened) deadBase = -1;
+  }
+  IfAnyScope(const IfAnyScope&) = delete;
+  IfAnyScope& operator=(const IfAnyScope&) = delete;
+  explicit operator bool() const { return taken; }
+};
+
 template <int N>
 struct M {
   emu::Mask<N> m;
+  double t = 0;
+  bool never = false;  // false from a uniform constant (a specialization constant: the GPU compiles the block out)
   M() = default;
-  M(bool b) : m(b) {}
-  explicit M(emu::Mask<N> x) : m(x) {}
+  M(bool b) : m(b), never(!b) {}
+  explicit M(emu::Mask<N> x, double ready = 0, bool nev = false) : m(x), t(ready), never(nev) {}
   explicit operator bool() const = delete;
-  friend M operator&&(M a, M b) { tick(kMaskOp); return M(a.m && b.m); }
-  friend M operator||(M a, M b) { tick(kMaskOp); return M(a.m || b.m); }
-  friend M operator!(M a) { tick(kMaskOp); return M(!a.m); }
-  friend M operator==(M a, M b) { tick(kMaskOp); return M(a.m == b.m); }
-  friend M operator!=(M a, M b) { tick(kMaskOp); return M(a.m != b.m); }
+  friend M operator&&(M a, M b) { return M(a.m && b.m, op(kMaskOp, a.t, b.t), a.never || b.never); }
+  friend M operator||(M a, M b) { return M(a.m || b.m, op(kMaskOp, a.t, b.t), a.never && b.never); }
+  friend M operator!(M a) { return M(!a.m, op(kMaskOp, a.t)); }
+  friend IfAnyScope ifAnyScope(M a) {
+    const bool any = anyLane(a.m);
+    if (any || !executeEveryBlock || a.never) return {any, false};
+    const bool outer = deadBase < 0;
+    if (outer) deadBase = loopDepth;
+    return {true, outer};
+  }
+  friend M operator==(M a, M b) { return M(a.m == b.m, op(kMaskOp, a.t, b.t)); }
+  friend M operator!=(M a, M b) { return M(a.m != b.m, op(kMaskOp, a.t, b.t)); }
   friend bool anyLane(M a) { return anyLane(a.m); }
   friend F<N> select(M c, float a, float b) { return select(c, F<N>(a), F<N>(b)); }
   friend U<N> select(M c, uint32_t a, uint32_t b) { return select(c, U<N>(a), U<N>(b)); }
   friend I<N> select(M c, int32_t a, int32_t b) { return select(c, I<N>(a), I<N>(b)); }
-  friend M select(M c, M a, M b) { tick(kSel); return M(select(c.m, a.m, b.m)); }
+  friend M select(M c, M a, M b) { return M(select(c.m, a.m, b.m), op(kSel, c.t, a.t, b.t)); }
 };
 
-#define OPCOUNT_COMMON(Self, Lane, Elem, AddKind, MulKind, CmpKind)                       \
-  Lane x;                                                                                  \
-  Self() = default;                                                                        \
-  Self(Elem s) : x(s) {}                                                                   \
-  explicit Self(Lane l) : x(l) {}                                                          \
-  Elem operator[](int i) const { return x[i]; }                                            \
-  void set(int i, Elem e) { x.set(i, e); }                                                 \
-  friend Self operator+(Self a, Self b) { tick(AddKind); return Self(a.x + b.x); }         \
-  friend Self operator-(Self a, Self b) { tick(AddKind); return Self(a.x - b.x); }         \
-  friend Self operator*(Self a, Self b) { tick(MulKind); return Self(a.x * b.x); }         \
-  friend Self operator-(Self a) { tick(AddKind); return Self(-a.x); }                      \
-  Self& operator+=(Self b) { return *this = *this + b; }                                   \
-  Self& operator-=(Self b) { return *this = *this - b; }                                   \
-  Self& operator*=(Self b) { return *this = *this * b; }                                   \
-  friend M<N> operator<(Self a, Self b) { tick(CmpKind); return M<N>(a.x < b.x); }         \
-  friend M<N> operator<=(Self a, Self b) { tick(CmpKind); return M<N>(a.x <= b.x); }       \
-  friend M<N> operator>(Self a, Self b) { tick(CmpKind); return M<N>(a.x > b.x); }         \
-  friend M<N> operator>=(Self a, Self b) { tick(CmpKind); return M<N>(a.x >= b.x); }       \
-  friend M<N> operator==(Self a, Self b) { tick(CmpKind); return M<N>(a.x == b.x); }       \
-  friend M<N> operator!=(Self a, Self b) { tick(CmpKind); return M<N>(a.x != b.x); }       \
-  friend Self select(M<N> m, Self a, Self b) { tick(kSel); return Self(select(m.m, a.x, b.x)); }
+#define OPCOUNT_COMMON(Self, Lane, Elem, AddKind, MulKind, CmpKind)                                       \
+  Lane x;                                                                                                  \
+  double t = 0;                                                                                            \
+  Self() = default;                                                                                        \
+  Self(Elem s) : x(s) {}                                                                                   \
+  explicit Self(Lane l, double ready = 0) : x(l), t(ready) {}                                              \
+  Elem operator[](int i) const { return x[i]; }                                                            \
+  void set(int i, Elem e) { x.set(i, e); }                                                                 \
+  friend Self operator+(Self a, Self b) { return Self(a.x + b.x, op(AddKind, a.t, b.t)); }                 \
+  friend Self operator-(Self a, Self b) { return Self(a.x - b.x, op(AddKind, a.t, b.t)); }                 \
+  friend Self operator*(Self a, Self b) { return Self(a.x * b.x, op(MulKind, a.t, b.t)); }                 \
+  friend Self operator-(Self a) { return Self(-a.x, op(AddKind, a.t)); }                                   \
+  Self& operator+=(Self b) { return *this = *this + b; }                                                   \
+  Self& operator-=(Self b) { return *this = *this - b; }                                                   \
+  Self& operator*=(Self b) { return *this = *this * b; }                                                   \
+  friend M<N> operator<(Self a, Self b) { return M<N>(a.x < b.x, op(CmpKind, a.t, b.t)); }                 \
+  friend M<N> operator<=(Self a, Self b) { return M<N>(a.x <= b.x, op(CmpKind, a.t, b.t)); }               \
+  friend M<N> operator>(Self a, Self b) { return M<N>(a.x > b.x, op(CmpKind, a.t, b.t)); }                 \
+  friend M<N> operator>=(Self a, Self b) { return M<N>(a.x >= b.x, op(CmpKind, a.t, b.t)); }               \
+  friend M<N> operator==(Self a, Self b) { return M<N>(a.x == b.x, op(CmpKind, a.t, b.t)); }               \
+  friend M<N> operator!=(Self a, Self b) { return M<N>(a.x != b.x, op(CmpKind, a.t, b.t)); }               \
+  friend Self select(M<N> m, Self a, Self b) { return Self(select(m.m, a.x, b.x), op(kSel, m.t, a.t, b.t)); }
 
-#define OPCOUNT_INT(Self)                                                                   \
-  friend Self operator&(Self a, Self b) { tick(kIAlu); return Self(a.x & b.x); }           \
-  friend Self operator|(Self a, Self b) { tick(kIAlu); return Self(a.x | b.x); }           \
-  friend Self operator^(Self a, Self b) { tick(kIAlu); return Self(a.x ^ b.x); }           \
-  friend Self operator~(Self a) { tick(kIAlu); return Self(~a.x); }                        \
-  friend Self operator<<(Self a, Self b) { tick(kIAlu); return Self(a.x << b.x); }         \
-  friend Self operator>>(Self a, Self b) { tick(kIAlu); return Self(a.x >> b.x); }         \
-  friend Self operator<<(Self a, int s) { tick(kIAlu); return Self(a.x << s); }            \
-  friend Self operator>>(Self a, int s) { tick(kIAlu); return Self(a.x >> s); }            \
-  Self& operator&=(Self b) { return *this = *this & b; }                                   \
-  Self& operator|=(Self b) { return *this = *this | b; }                                   \
-  Self& operator^=(Self b) { return *this = *this ^ b; }                                   \
-  Self& operator<<=(int s) { return *this = *this << s; }                                  \
+#define OPCOUNT_INT(Self)                                                                                   \
+  friend Self operator&(Self a, Self b) { return Self(a.x & b.x, op(kIAlu, a.t, b.t)); }                   \
+  friend Self operator|(Self a, Self b) { return Self(a.x | b.x, op(kIAlu, a.t, b.t)); }                   \
+  friend Self operator^(Self a, Self b) { return Self(a.x ^ b.x, op(kIAlu, a.t, b.t)); }                   \
+  friend Self operator~(Self a) { return Self(~a.x, op(kIAlu, a.t)); }                                     \
+  friend Self operator<<(Self a, Self b) { return Self(a.x << b.x, op(kIAlu, a.t, b.t)); }                 \
+  friend Self operator>>(Self a, Self b) { return Self(a.x >> b.x, op(kIAlu, a.t, b.t)); }                 \
+  friend Self operator<<(Self a, int s) { return Self(a.x << s, op(kIAlu, a.t)); }                         \
+  friend Self operator>>(Self a, int s) { return Self(a.x >> s, op(kIAlu, a.t)); }                         \
+  Self& operator&=(Self b) { return *this = *this & b; }                                                   \
+  Self& operator|=(Self b) { return *this = *this | b; }                                                   \
+  Self& operator^=(Self b) { return *this = *this ^ b; }                                                   \
+  Self& operator<<=(int s) { return *this = *this << s; }                                                  \
   Self& operator>>=(int s) { return *this = *this >> s; }
 
 template <int N>
@@ -89,36 +171,38 @@ struct U {
   OPCOUNT_INT(U)
   explicit U(I<N> a);
   explicit U(F<N> a);
-  friend U mulHi(U a, U b) { tick(kIMul); return U(emu::mulHi(a.x, b.x)); }
+  friend U mulHi(U a, U b) { return U(emu::mulHi(a.x, b.x), op(kIMul, a.t, b.t)); }
 };
 
 template <int N>
 struct I {
   OPCOUNT_COMMON(I, emu::I32<N>, int32_t, kIAlu, kIMul, kIAlu)
   OPCOUNT_INT(I)
-  explicit I(U<N> a) : x(emu::I32<N>(a.x)) {}
+  explicit I(U<N> a) : x(emu::I32<N>(a.x)), t(a.t) {}
   explicit I(F<N> a);
 };
 
 template <int N>
 struct F {
   OPCOUNT_COMMON(F, emu::F32<N>, float, kFAdd, kFMul, kFCmp)
-  explicit F(I<N> a) : x(emu::F32<N>(a.x)) { tick(kCvt); }
-  explicit F(U<N> a) : x(emu::F32<N>(a.x)) { tick(kCvt); }
+  explicit F(I<N> a) : x(emu::F32<N>(a.x)), t(op(kCvt, a.t)) {}
+  explicit F(U<N> a) : x(emu::F32<N>(a.x)), t(op(kCvt, a.t)) {}
 };
 
-template <int N> U<N>::U(I<N> a) : x(emu::U32<N>(a.x)) {}
-template <int N> U<N>::U(F<N> a) : x(emu::U32<N>(a.x)) { tick(kCvt); }
-template <int N> I<N>::I(F<N> a) : x(emu::I32<N>(a.x)) { tick(kCvt); }
+template <int N> inline LoopScope loopScope(F<N>) { return {}; }
+
+template <int N> U<N>::U(I<N> a) : x(emu::U32<N>(a.x)), t(a.t) {}
+template <int N> U<N>::U(F<N> a) : x(emu::U32<N>(a.x)), t(op(kCvt, a.t)) {}
+template <int N> I<N>::I(F<N> a) : x(emu::I32<N>(a.x)), t(op(kCvt, a.t)) {}
 
 #undef OPCOUNT_COMMON
 #undef OPCOUNT_INT
 
 // Bit casts are free (no instruction on either build).
-template <int N> inline U<N> floatBitsToUint(F<N> a) { return U<N>(emu::floatBitsToUint(a.x)); }
-template <int N> inline I<N> floatBitsToInt(F<N> a) { return I<N>(emu::floatBitsToInt(a.x)); }
-template <int N> inline F<N> uintBitsToFloat(U<N> a) { return F<N>(emu::uintBitsToFloat(a.x)); }
-template <int N> inline F<N> intBitsToFloat(I<N> a) { return F<N>(emu::intBitsToFloat(a.x)); }
+template <int N> inline U<N> floatBitsToUint(F<N> a) { return U<N>(emu::floatBitsToUint(a.x), a.t); }
+template <int N> inline I<N> floatBitsToInt(F<N> a) { return I<N>(emu::floatBitsToInt(a.x), a.t); }
+template <int N> inline F<N> uintBitsToFloat(U<N> a) { return F<N>(emu::uintBitsToFloat(a.x), a.t); }
+template <int N> inline F<N> intBitsToFloat(I<N> a) { return F<N>(emu::intBitsToFloat(a.x), a.t); }
 
 /// Texels a linear-filtered lookup at `lod` reads on a texture of `levels` levels: 4 per level, two
 /// levels when the LOD falls strictly between levels (trilinear), one otherwise.
@@ -134,6 +218,7 @@ namespace shadetwin::shade {
 template <int N>
 V4<opcount::F<N>> textureLodLanes(const Sampler2D& s, opcount::F<N> u, opcount::F<N> v, opcount::F<N> lod,
                                   opcount::F<N> layer = opcount::F<N>(0.0f)) {
+  if (opcount::counting()) {
   opcount::tick(opcount::kTexLookup, N);
   const bool nearest = s.desc.magFilter == emu::Filter::Nearest && s.desc.minFilter == emu::Filter::Nearest;
   for (int i = 0; i < N; ++i) {
@@ -142,27 +227,35 @@ V4<opcount::F<N>> textureLodLanes(const Sampler2D& s, opcount::F<N> u, opcount::
     opcount::tick(nearest ? opcount::kTexNearest : texels == 8 && s.desc.mipmapMode == emu::MipmapMode::Linear ? opcount::kTexTrilinear
                                                                                                             : opcount::kTexBilinear);
   }
+  }
   const V4<emu::F32<N>> r = textureLodLanes(s, u.x, v.x, lod.x, layer.x);
-  return V4<opcount::F<N>>(opcount::F<N>(r.x), opcount::F<N>(r.y), opcount::F<N>(r.z), opcount::F<N>(r.w));
+  const double t = std::max({u.t, v.t, lod.t, layer.t});  // the lookup's own cost is the texture term, not the schedule
+  return V4<opcount::F<N>>(opcount::F<N>(r.x, t), opcount::F<N>(r.y, t), opcount::F<N>(r.z, t), opcount::F<N>(r.w, t));
 }
 template <int N>
 V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::I<N> y, int level,
                                    opcount::I<N> layer = opcount::I<N>(0)) {
-  opcount::tick(opcount::kTexLookup, N);
-  opcount::tick(opcount::kTexel, N);
-  opcount::tick(opcount::kTexNearest, N);  // a fetch: one texel, no filtering
+  if (opcount::counting()) {
+    opcount::tick(opcount::kTexLookup, N);
+    opcount::tick(opcount::kTexel, N);
+    opcount::tick(opcount::kTexNearest, N);  // a fetch: one texel, no filtering
+  }
   const V4<emu::F32<N>> r = texelFetchLanes(s, x.x, y.x, level, layer.x);
-  return V4<opcount::F<N>>(opcount::F<N>(r.x), opcount::F<N>(r.y), opcount::F<N>(r.z), opcount::F<N>(r.w));
+  const double t = std::max({x.t, y.t, layer.t});
+  return V4<opcount::F<N>>(opcount::F<N>(r.x, t), opcount::F<N>(r.y, t), opcount::F<N>(r.z, t), opcount::F<N>(r.w, t));
 }
 template <int N>
 void uintFetchLanes(const USampler2DArray& s, opcount::I<N> x, opcount::I<N> y, opcount::I<N> layer, int level, opcount::U<N>& a,
                     opcount::U<N>& b, opcount::U<N>& c, opcount::U<N>& d) {
-  opcount::tick(opcount::kTexLookup, N);
-  opcount::tick(opcount::kTexel, N);
-  opcount::tick(opcount::kTexNearest, N);  // a fetch: one texel, no filtering
+  if (opcount::counting()) {
+    opcount::tick(opcount::kTexLookup, N);
+    opcount::tick(opcount::kTexel, N);
+    opcount::tick(opcount::kTexNearest, N);  // a fetch: one texel, no filtering
+  }
   emu::U32<N> ra, rb, rc, rd;
   uintFetchLanes(s, x.x, y.x, layer.x, level, ra, rb, rc, rd);
   a.x = ra, b.x = rb, c.x = rc, d.x = rd;
+  a.t = b.t = c.t = d.t = std::max({x.t, y.t, layer.t});
 }
 }  // namespace shadetwin::shade
 

@@ -41,9 +41,10 @@ void addRaster(PassCounts& c, const emu::RasterStats& r) {
 }
 
 // A MIP chain's downsampling dispatches (one per level below 0), counted into `c`; returns the chain.
-std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float>& level0, uint32_t w, uint32_t h, uint32_t layers) {
+std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float>& level0, uint32_t w, uint32_t h, uint32_t layers,
+                                          const CoreModel& core) {
   std::vector<std::vector<float>> chain;
-  addTicks(c, countedTicks([&] { chain = mipChainCpu(level0, w, h, layers, 0); }), 8);
+  addTicks(c, countedTicks([&] { chain = mipChainCpu(level0, w, h, layers, 0); }, core, &c.scheduledSeconds), 8);
   for (size_t l = 1; l < chain.size(); ++l) {
     const uint32_t dw = std::max(1u, w >> l), dh = std::max(1u, h >> l);
     c.invocations += uint64_t((dw + 7) / 8 * 8) * dh * layers;
@@ -56,7 +57,7 @@ std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float
 
 }  // namespace
 
-FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev) {
+FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev, const CoreModel& core) {
   FrameCounts f;
   Checker check{f};
   // G-buffer: every object one draw; vertex invocations and fragment lanes (helpers included) at one lane per tick.
@@ -87,14 +88,14 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     PassCounts pa;
     pa.pass = "paraboloid";
     std::vector<float> atlas;
-    addTicks(pa, countedTicks([&] { atlas = paraboloidAtlasCounted(env, dev, scene.fisFaceSize); }), 8);
+    addTicks(pa, countedTicks([&] { atlas = paraboloidAtlasCounted(env, dev, scene.fisFaceSize); }, core, &pa.scheduledSeconds), 8);
     const size_t n = 2 * size_t(scene.fisFaceSize) * scene.fisFaceSize;
     check("paraboloid", atlas.data(), reinterpret_cast<const float*>(in.atlas->levels()[0].data()), 4 * n);
     pa.invocations = (n + 7) / 8 * 8, pa.dispatches = 1, pa.bytesWritten = 16 * n;
     f.passes.push_back(pa);
     PassCounts mp;
     mp.pass = "mips";
-    const auto chain = countMips(mp, atlas, 2 * scene.fisFaceSize, scene.fisFaceSize, 1);
+    const auto chain = countMips(mp, atlas, 2 * scene.fisFaceSize, scene.fisFaceSize, 1, core);
     for (size_t l = 1; l < chain.size(); ++l)
       check("mips", chain[l].data(), reinterpret_cast<const float*>(in.atlas->levels()[l].data()), chain[l].size());
     f.passes.push_back(mp);
@@ -103,9 +104,15 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     pr.pass = "sh-project", rd.pass = "sh-reduce";
     std::array<uint64_t, opcount::kKinds> project{};
     ShIrradiance sh;
+    double projectSeconds = 0;
     const auto all = countedTicks([&] {
-      sh = shIrradianceCounted(env, dev, [&] { project = opcount::counts; });
-    });
+      sh = shIrradianceCounted(env, dev, [&] {
+        project = opcount::counts;
+        projectSeconds = opcount::sched.on ? opcount::sched.lastRetire : 0.0;
+        opcount::sched.on = false;  // the reduction is counted one lane at a time: not scheduled
+      });
+    }, core);
+    pr.scheduledSeconds = projectSeconds;
     std::array<uint64_t, opcount::kKinds> reduce{};
     for (int k = 0; k < opcount::kKinds; ++k) reduce[size_t(k)] = all[size_t(k)] - project[size_t(k)];
     addTicks(pr, project, 8);
@@ -121,7 +128,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     PassCounts gl;
     gl.pass = "glint-lighting";
     GlintLightingTable t;
-    addTicks(gl, countedTicks([&] { t = glintLightingCounted(env, dev, in.glints->lightingSpec); }), 8);
+    addTicks(gl, countedTicks([&] { t = glintLightingCounted(env, dev, in.glints->lightingSpec); }, core, &gl.scheduledSeconds), 8);
     const GlintLightingTable e = glintLightingEmu(env, dev, in.glints->lightingSpec);
     check("glint-lighting", t.rgba, e.rgba);
     const uint32_t views = t.spec.rings * t.spec.sectors;
@@ -136,7 +143,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     if (m.width > 1 || m.height > 1) {
       PassCounts mp;
       mp.pass = "mips";
-      const auto chain = countMips(mp, m.texels, m.width, m.height, m.layers);
+      const auto chain = countMips(mp, m.texels, m.width, m.height, m.layers, core);
       for (size_t l = 1; l < chain.size(); ++l)
         check("mips", chain[l].data(), reinterpret_cast<const float*>(in.maps->levels()[l].data()), chain[l].size());
       bool merged = false;
@@ -144,7 +151,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
         if (p.pass == "mips") {
           for (int k = 0; k < opcount::kKinds; ++k) p.ops[size_t(k)] += mp.ops[size_t(k)];
           p.invocations += mp.invocations, p.dispatches += mp.dispatches;
-          p.bytesRead += mp.bytesRead, p.bytesWritten += mp.bytesWritten;
+          p.bytesRead += mp.bytesRead, p.bytesWritten += mp.bytesWritten, p.scheduledSeconds += mp.scheduledSeconds;
           merged = true;
         }
       if (!merged) f.passes.push_back(mp);
@@ -179,7 +186,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     PassCounts fp;
     fp.pass = "visibility-fit";
     VisibilityImage fit;
-    addTicks(fp, countedTicks([&] { fit = visibilityFitCounted(g, maps, v, dev); }), 8);
+    addTicks(fp, countedTicks([&] { fit = visibilityFitCounted(g, maps, v, dev); }, core, &fp.scheduledSeconds), 8);
     const VisibilityImage fitE = visibilityFitEmu(g, maps, v, dev);
     check("visibility-fit", fit.coeffs, fitE.coeffs);
     fp.invocations = (pixels + 7) / 8 * 8, fp.dispatches = 1, fp.bytesRead = pixels * 32, fp.bytesWritten = pixels * 64;
@@ -189,7 +196,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
       PassCounts fl;
       fl.pass = "visibility-filter";
       VisibilityImage filt;
-      addTicks(fl, countedTicks([&] { filt = visibilityFilterCounted(g, fitE, v, dev); }), 8);
+      addTicks(fl, countedTicks([&] { filt = visibilityFilterCounted(g, fitE, v, dev); }, core, &fl.scheduledSeconds), 8);
       const VisibilityImage filtE = visibilityFilterEmu(g, fitE, v, dev);
       check("visibility-filter", filt.coeffs, filtE.coeffs);
       fl.invocations = (pixels + 7) / 8 * 8, fl.dispatches = 1, fl.bytesWritten = pixels * 64;
@@ -200,7 +207,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
 
   if (scene.technique == "glints-gxd") return f;  // its shading is the host's double-precision ground truth
   std::vector<float> image;
-  PassCounts sc = countShadePass(scene, g, in, dev, vis.get(), &image);
+  PassCounts sc = countShadePass(scene, g, in, dev, vis.get(), &image, core);
   check("shade", image, shadeEmu(scene, g, in, dev, vis.get()));
   f.passes.push_back(sc);
   return f;

@@ -28,16 +28,30 @@ struct PassCounts {
   uint64_t bytesRead = 0, bytesWritten = 0;  // buffer traffic (texture reads are in the lookups)
   uint64_t attachmentBytes = 0;  // raster passes: render-target bytes cleared and copied out
   uint64_t triangles = 0, fragments = 0, helperLanes = 0;  // raster passes: triangles in, covered pixels, quad helpers
+  // One core's time for the pass's 8-lane operations on the device's core model (CoreModel on), 0 when not scheduled
+  // (GPUs; passes counted one lane at a time: vertex and fragment stages, the SH reduction).
+  double scheduledSeconds = 0;
+};
+
+/// The core a counted run is scheduled on (opcount::Scheduler): per kind the result latency and the issue interval of
+/// one counted 8-lane operation on one core, and the window; off: counting only.
+struct CoreModel {
+  bool executeEveryBlock = false;  // opcount::executeEveryBlock (software devices), also without the schedule
+  bool on = false;
+  std::array<double, opcount::kKinds> latency{}, interval{};
+  uint32_t window = 256;
 };
 
 /// Runs `f` on the calling thread alone (a TBB arena of one) with the counters cleared; returns its ticks.
-std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& f);
+/// With `core` on, the run is also scheduled and `scheduledSeconds` receives one core's time.
+std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& f, const CoreModel& core = {},
+                                                   double* scheduledSeconds = nullptr);
 /// Adds ticks of a run whose vectors have `lanes` lanes (ALU kinds are multiplied, texture kinds are per lane).
 void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks, double lanes);
 
 /// The shading pass of scene.technique counted (model/shade_counts.cpp); `out` (optional) receives its image.
 PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
-                          const VisibilityImage* vis = nullptr, std::vector<float>* out = nullptr);
+                          const VisibilityImage* vis = nullptr, std::vector<float>* out = nullptr, const CoreModel& core = {});
 
 struct FrameCounts {
   std::vector<PassCounts> passes;  // in the order the frame runs them; a pass run several times (mips) is one entry
@@ -46,6 +60,6 @@ struct FrameCounts {
 };
 /// Every device pass of one emulated frame of `scene` (its technique, visibility block, maps) counted, each against the
 /// emulator's own run of the same pass.
-FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev);
+FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev, const CoreModel& core = {});
 
 }  // namespace shadetwin::model

@@ -30,12 +30,22 @@ namespace counted_pass {
 
 namespace model {
 
-std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& f) {
+std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& f, const CoreModel& core, double* scheduledSeconds) {
   std::array<uint64_t, opcount::kKinds> t{};
   tbb::task_arena one(1);  // the counters are per thread: one thread does all the work
   one.execute([&] {
     opcount::counts = {};
+    opcount::executeEveryBlock = core.executeEveryBlock;
+    opcount::Scheduler& s = opcount::sched;
+    s.on = core.on;
+    if (core.on) {
+      s.latency = core.latency, s.interval = core.interval, s.window = std::max(1u, core.window);
+      s.start();
+    }
     f();
+    s.on = false;
+    opcount::executeEveryBlock = false;
+    if (scheduledSeconds) *scheduledSeconds = core.on ? s.lastRetire : 0.0;
     for (int k = 0; k < opcount::kKinds; ++k) t[size_t(k)] = opcount::counts[size_t(k)];
   });
   return t;
@@ -47,11 +57,13 @@ void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks,
 }
 
 PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
-                          const VisibilityImage* vis, std::vector<float>* out) {
+                          const VisibilityImage* vis, std::vector<float>* out, const CoreModel& core) {
   std::vector<float> image;
   PassCounts c;
   c.pass = "shade";
-  addTicks(c, countedTicks([&] { counted_pass::shadeCounted(scene, g, in, dev, image, vis); }), 8);
+  opcount::sceneBrdfKinds = brdfKindsOf(materialRecords(scene, true));  // the pipeline's specialization constant
+  addTicks(c, countedTicks([&] { counted_pass::shadeCounted(scene, g, in, dev, image, vis); }, core, &c.scheduledSeconds), 8);
+  opcount::sceneBrdfKinds = 0xffffffffu;
   const uint64_t pixels = uint64_t(g.width) * g.height;
   c.invocations = (pixels + 7) / 8 * 8;
   c.dispatches = 1;

@@ -128,7 +128,7 @@ Int cdfSearch(Sampler2D cdf, Int row, uint n, Float u) {
   uint top = 1u;
   while (top * 2u <= n) top = top * 2u;
   Int pos = Int(0);
-  for (uint stride = top; stride > 0u; stride = stride >> 1) {
+  FOR (uint stride = top; stride > 0u; stride = stride >> 1) {
     Int probe = pos + Int(int(stride) - 1);
     Mask inside = probe < Int(int(n));
     Float c = texelFetch2D(cdf, min(probe, Int(int(n) - 1)), row, 0).x;
@@ -185,7 +185,7 @@ Float envPdf(Sampler2D table, Sampler2D texels, EnvSampling s, Float3 dir) {
 // of stream `index` drawn and their pdfs looked up; returns sum(pdf + dir.x) so no work is dead.
 Float envSamplingChecksum(Sampler2D table, Sampler2D texels, EnvSampling s, Uint index, uint n, uint seed) {
   PRECISE Float sum = Float(0.0f);
-  for (uint j = 0u; j < n; j++) {
+  FOR (uint j = 0u; j < n; j++) {
     Float4 u = philoxUniform4(philox4x32(Philox4(index, Uint(j), Uint(2u), Uint(0u)), Uint(seed), Uint(0u)));
     EnvSample e = sampleEnv(table, texels, s, u);
     sum = sum + envPdf(table, texels, s, e.dir) + e.dir.x;

@@ -21,10 +21,10 @@ struct GlintColumn {
 GlintColumn glintLightingColumn(Sampler2D env, Sampler2D dirs, Sampler2D coef, int envW, int y0, int y1, int level, int order,
                                 int m, Float3 wo) {
   GlintColumn col;
-  for (int i = 0; i < 6 * (kGlintMaxOrder + 1); ++i) col.c[i] = Float(0.0f);
+  FOR (int i = 0; i < 6 * (kGlintMaxOrder + 1); ++i) col.c[i] = Float(0.0f);
   float mScale = m == 0 ? 1.0f : 1.41421356f;  // sqrt(2) for the m > 0 pair
-  for (int y = y0; y < y1; ++y) {
-    for (int x = 0; x < envW; ++x) {
+  FOR (int y = y0; y < y1; ++y) {
+    FOR (int x = 0; x < envW; ++x) {
       Float4 L = texelFetchUniform(env, x, y, level);
       Float4 d = texelFetchUniform(dirs, x, y, 0);
       PRECISE Float3 h = wo + Float3(d.x, d.y, d.z);
@@ -34,13 +34,13 @@ GlintColumn glintLightingColumn(Sampler2D env, Sampler2D dirs, Sampler2D coef, i
       ShPolar pol = shPolar(hn);
       ShLeg s = shLegSeed0();
       ShAzimuth az = ShAzimuth(Float(1.0f), Float(0.0f));
-      for (int k = 1; k <= m; ++k) {
+      FOR (int k = 1; k <= m; ++k) {
         s = shLegSeedNext(s, coef, k, pol.sinT);
         az = shAzimuthNext(az, pol.cosP, pol.sinP);
       }
       PRECISE Float w = select(ok, d.w * mScale, Float(0.0f));
       PRECISE Float3 wl = Float3(L.x * w, L.y * w, L.z * w);
-      for (int l = m; l <= order; ++l) {
+      FOR (int l = m; l <= order; ++l) {
         if (l > m) s = shLegNext(s, coef, l, m, pol.z);
         PRECISE Float p = shLegValue(s);
         PRECISE Float pc = p * az.c;

@@ -14,6 +14,12 @@
 //     the only sources of those. The C++ lane types have no operator/, so a raw '/' fails the build.
 //   - Declare locals with PRECISE; the build also marks every float operation NoContraction in SPIR-V.
 //   - Out parameters: OUT(T) / INOUT(T), assigned first; prefer returning a struct.
+//   - A loop whose trip count is not a small literal is written FOR (init; cond; step): GLSL `for`; in C++ the
+//     same loop, which the counting build (model/op_count.h) sees entered and left. A device that runs every
+//     block of an `if` under its mask still leaves such a loop at once when no lane is active, while its
+//     compiler unrolls a loop of a small literal count (plain `for`: exact_math's 26 and 27 steps, Philox's 10
+//     rounds) into straight-line code that runs (calibrate's branch kernels measure both), so the performance
+//     model counts an untaken block's straight-line code and unrolled loops, not its FOR loops.
 #ifndef SHADE_PRELUDE_GLSL_DONE
 #ifdef GL_core_profile
 #define SHADE_PRELUDE_GLSL_DONE 1
@@ -30,6 +36,7 @@
 #define INOUT(T) inout T
 #define INLINE
 #define IF_ANY(m) if (m)
+#define FOR for
 #define Sampler2D sampler2D
 #define Sampler2DArray sampler2DArray
 
@@ -110,7 +117,10 @@ vec3 st_cross(vec3 a, vec3 b) {
 #define OUT(T) T&
 #define INOUT(T) T&
 #define INLINE inline
-#define IF_ANY(m) if (anyLane(m))
+// ifAnyScope(m): anyLane(m) for the emulator's masks; an object that also tells the counting build (model/op_count.h)
+// where the block ends. loopScope: nothing, or the counting build's loop marker.
+#define IF_ANY(m) if ([[maybe_unused]] auto if_any_scope_ = ifAnyScope(m); if_any_scope_)
+#define FOR if ([[maybe_unused]] auto loop_scope_ = loopScope(Float()); true) for
 #define SPEC_INT(name, id, value) const int name = value;
 
 using Float2 = ::shadetwin::shade::V2<Float>;
@@ -121,7 +131,12 @@ using Sampler2D = ::shadetwin::shade::Sampler2D;
 inline Float4 textureLod(const Sampler2D& s, Float2 uv, Float lod) {
   return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod);
 }
+#ifndef SHADE_RUNTIME_BRDF_KINDS
 inline constexpr uint32_t kSceneBrdfKinds = 0xffffffffu;  // GLSL: a specialization constant
+#else
+// The counting build (model/counted.h) takes the pipeline's value at run time: it counts what the GPU compiled.
+#define kSceneBrdfKinds SHADE_RUNTIME_BRDF_KINDS
+#endif
 using NativeResult = ::shadetwin::shade::NativeResult<Float>;
 inline NativeResult nativeDiv(Float a, Float b) { return ::shadetwin::shade::nativeDiv(a, b); }
 inline NativeResult nativeSqrt(Float x) { return ::shadetwin::shade::nativeSqrt(x); }

@@ -113,7 +113,7 @@ ShRow shProjectRow(Sampler2D env, Int y, int width, int height) {
   Float3 zero = Float3(0.0f, 0.0f, 0.0f);
   ShRgb acc = ShRgb(zero, zero, zero, zero, zero, zero, zero, zero, zero);
   ShBand3 hi = ShBand3(zero, zero, zero, zero, zero, zero, zero);
-  for (int x = 0; x < width; x++) {
+  FOR (int x = 0; x < width; x++) {
     XmSinCos az = exSinCos2Pi((Float(float(x)) + 0.5f) * invW);
     PRECISE Float3 d = Float3(-(mid.s * az.s), mid.c, mid.s * az.c);
     Float4 t = texelFetch2D(env, Int(x), y, 0);

@@ -98,7 +98,7 @@ Float4 shadeEnvMis(Sampler2D env, Sampler2D table, Sampler2D texels, EnvSampling
   IF_ANY(geometry) {
     FisFrame F = envFrame(g0, g1, g2, eye);
     Float pd = misDiffuseProbability(diffuse, specular);
-    for (uint i = 0u; i < ms.sampleCount; i++) {
+    FOR (uint i = 0u; i < ms.sampleCount; i++) {
       // Environment strategy.
       Float4 ue = philoxUniform4(philox4x32(Philox4(pixel, Uint(i), Uint(0u), Uint(0u)), Uint(ms.seed), Uint(ms.frame)));
       EnvSample e = sampleEnv(table, texels, es, ue);

@@ -54,7 +54,7 @@ Float4 shadeFis(Sampler2D atlas, uint mode, Float maxLod, Float log2KwhOverN, Fl
   // lanes that run them without geometry are discarded by the select below).
   IF_ANY(geometry) {
     Float2 offset = pixelOffset(pixel);
-    for (uint i = 0u; i < sampleCount; i++) {
+    FOR (uint i = 0u; i < sampleCount; i++) {
       Float2 u = hammersley(Uint(i), Uint(sampleCount));
       if (mode == kFisStochastic) u = rotatePoint(u, offset);
       BrdfSample s = sampleBrdf(brdf, F.wo, u);

@@ -102,11 +102,11 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
                        max(texelFetch2D(lighting, Int(0), view.v10, 0).w, texelFetch2D(lighting, Int(0), view.v11, 0).w));
   Int mstar = min(Int(k0.y), Int(lightMax));
   Float kl[kGlintShadeMaxOrder + 1];
-  for (int l = 0; l <= order; ++l) kl[l] = select(Int(l) <= mstar, texelFetch2D(mats, Int(6 + l), row, 0).x, Float(0.0f));
+  FOR (int l = 0; l <= order; ++l) kl[l] = select(Int(l) <= mstar, texelFetch2D(mats, Int(6 + l), row, 0).x, Float(0.0f));
   Float D[kGlintShadeCoeffs];
-  for (int i = 0; i < nc; ++i) D[i] = Float(0.0f);
+  FOR (int i = 0; i < nc; ++i) D[i] = Float(0.0f);
   int groups = int(s.sectors) / 8;
-  for (int r = 0; r < int(s.rings); ++r) {
+  FOR (int r = 0; r < int(s.rings); ++r) {
     Float4 slots = texelFetch2D(mats, Int(2 + r / 4), row, 0);
     Float slotF = slots.x;
     if (r % 4 == 1) slotF = slots.y;
@@ -115,7 +115,7 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
     Mask has = lit && slotF >= 0.0f;
     Int layer = Int(max(slotF, 0.0f));
     IF_ANY(has) {
-      for (int g = 0; g < groups; ++g) {
+      FOR (int g = 0; g < groups; ++g) {
         UintTexel4 c8 = ndfBoxCounts8(sat, layer, g, groups, int(s.mapW), int(s.mapH), s.invW, s.invH, box.x0, box.y0, box.x1, box.y1);
         for (int j = 0; j < 8; ++j) {
           Uint word = c8.x;
@@ -133,7 +133,7 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
               // directions around it; four coefficients (index 4 q .. 4 q + 3) per texel.
               GlintGridTap lt = glintGridTap(d, s.lobeRings, s.lobeSectors);
               int lq = 0;  // the degree of coefficient 4 q
-              for (int q = 0; q < (nc + 3) / 4; ++q) {
+              FOR (int q = 0; q < (nc + 3) / 4; ++q) {
                 if ((lq + 1) * (lq + 1) <= 4 * q) ++lq;
                 if ((lq + 1) * (lq + 1) <= 4 * q) ++lq;  // q = 1: from degree 0 to 2
                 IF_ANY(Int(lq) <= mstar) {
@@ -158,7 +158,7 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
             ShPolar pol = shPolar(d);
             ShLeg seed = shLegSeed0();
             ShAzimuth az = ShAzimuth(Float(1.0f), Float(0.0f));
-            for (int m = 0; m <= order; ++m) {
+            FOR (int m = 0; m <= order; ++m) {
               // Past its M* a lane's k_l are 0: what it adds there is +-0.
               IF_ANY(Int(m) <= mstar) {
                 if (m > 0) {
@@ -168,7 +168,7 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
                 PRECISE Float wc = select(Mask(m == 0), w, w * 1.41421356f) * az.c;
                 PRECISE Float ws = (w * 1.41421356f) * az.s;
                 ShLeg sl = seed;
-                for (int l = m; l <= order; ++l) {
+                FOR (int l = m; l <= order; ++l) {
                   IF_ANY(Int(l) <= mstar) {
                     if (l > m) sl = shLegNext(sl, coef, l, m, pol.z);
                     PRECISE Float p = shLegValue(sl) * kl[l];
@@ -185,9 +185,9 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
     }
   }
   PRECISE Float3 sum = Float3(Float(0.0f), Float(0.0f), Float(0.0f));
-  for (int l = 0; l <= order; ++l) {
+  FOR (int l = 0; l <= order; ++l) {
     IF_ANY(Int(l) <= mstar) {  // D is 0 past M*: L * 0 adds +-0
-      for (int i = l * l; i < (l + 1) * (l + 1); ++i) {
+      FOR (int i = l * l; i < (l + 1) * (l + 1); ++i) {
         Float4 L = glintGridLerp(lighting, i, view);
         sum = sum + Float3(L.x, L.y, L.z) * D[i];
       }

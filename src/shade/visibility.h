@@ -89,7 +89,7 @@ Sh16 visFit(Sampler2DArray maps, Sampler2D data, VisSettings s, Float3 p, Float3
   // (whose NaN operand the C++ prelude and lavapipe resolve differently).
   Float3 n = exNormalize(select(dot(nIn, nIn) > 0.0f, nIn, Float3(0.0f, 1.0f, 0.0f)));
   Sh16 acc = visPrior(s, n);
-  for (int k = 0; k < int(s.count); k++) {
+  FOR (int k = 0; k < int(s.count); k++) {
     Float v = visResidual(maps, data, s, k, p, n);
     Sh16 wk = Sh16(texelFetchUniform(data, 5, k, 0), texelFetchUniform(data, 6, k, 0), texelFetchUniform(data, 7, k, 0),
                    texelFetchUniform(data, 8, k, 0));
@@ -157,8 +157,8 @@ Sh16 visFilter(Sampler2DArray coeffs, Sampler2DArray gbuf, Int x, Int y, int wid
   Float4 zero = Float4(0.0f, 0.0f, 0.0f, 0.0f);
   Sh16 acc = Sh16(zero, zero, zero, zero);
   PRECISE Float count = Float(0.0f);
-  for (int dy = -radius; dy <= radius; dy++) {
-    for (int dx = -radius; dx <= radius; dx++) {
+  FOR (int dy = -radius; dy <= radius; dy++) {
+    FOR (int dx = -radius; dx <= radius; dx++) {
       Int qx = x + Int(dx);
       Int qy = y + Int(dy);
       Mask inside = qx >= Int(0) && qx < Int(width) && qy >= Int(0) && qy < Int(height);

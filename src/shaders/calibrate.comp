@@ -13,6 +13,13 @@
 //   kind 6 tex    textureLod at a moving (u, v): `filter` picked by the sampler the host binds; 1 lookup
 //   kind 7 copy   dst = src * c over a large buffer, 16 vec4 per invocation (bandwidth)
 //   kind 8 empty  nothing (launch cost)
+//   kind 9 window iterations that are independent of each other, each a chain of 64 dependent fadds: how much of the
+//                 next chain the core overlaps with this one (its reorder window, in these operations)
+//   kind 10 branch the fadd kernel's steps inside an `if` on a per-lane value no lane takes (x0 < lod, lod = -1): about
+//                 the fadd kernel's time when the device runs every block under a mask, about nothing when it skips
+//   kind 11 branch the same, the `if` around the whole loop: a loop whose lanes are all inactive may exit at once
+//   kind 12 branch kind 10 with the block's steps in a loop of a literal 4 iterations (a compiler may unroll it)
+// DEPENDENT (specialization constant 1) runs kinds 0-5 on one chain: time per step is the latency, not the issue rate.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 64) in;
@@ -22,6 +29,9 @@ layout(std430, set = 0, binding = 2) writeonly buffer Dst { vec4 dst[]; };
 // The kind is a specialization constant: one pipeline per kind, the other kinds' code removed before the JIT
 // (SwiftShader's Subzero takes minutes on the whole shader).
 layout(constant_id = 0) const uint KIND = 0u;
+// DEPENDENT: the 32 steps of an iteration run on one chain (each step waits for the previous one), so time per
+// step is the class's latency rather than its issue rate (the latency kernels of the model's scheduler).
+layout(constant_id = 1) const bool DEPENDENT = false;
 layout(push_constant) uniform Push {
   uint kind, iters, count, pad;  // kind: the host's record of the pipeline (the shader reads KIND)
   float c, lod, step, pad2;
@@ -39,7 +49,21 @@ layout(push_constant) uniform Push {
 #define SEL(k) x##k = mix(x##k + pc.c, x##k - pc.c, x##k > pc.c);  /* OpSelect, not a branch */
 #define SUM_X(k) acc.x += x##k;
 #define SUM_U(k) acc.y += float(u##k & 255u);
-#define STEPS(OP) ALL8(OP) ALL8(OP) ALL8(OP) ALL8(OP)
+#define STEPS_INDEP(OP) ALL8(OP) ALL8(OP) ALL8(OP) ALL8(OP)
+#define ONE8(OP) OP(0) OP(0) OP(0) OP(0) OP(0) OP(0) OP(0) OP(0)
+// The chain layout is chosen outside the loop: SwiftShader runs both sides of an `if` under a mask (it would run the
+// untaken layout's steps too), but a loop whose lanes are all inactive exits at once.
+#define STEPS_DEP(OP) ONE8(OP) ONE8(OP) ONE8(OP) ONE8(OP)
+#define LOOP(OP, DOP)                                                          \
+  if (DEPENDENT) {                                                             \
+    for (uint n = 0u; n < pc.iters; ++n) { STEPS_DEP(DOP) }                    \
+  } else {                                                                     \
+    for (uint n = 0u; n < pc.iters; ++n) { STEPS_INDEP(OP) }                   \
+  }
+// The dependent multiply squares (u * key * key ... would be folded into one multiply by key^32, integer multiplication
+// being associative).
+#define IMULD(k) u##k = u##k * u##k;
+#define YADD(k) y = y + pc.c;
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -49,22 +73,42 @@ void main() {
   uint key = floatBitsToUint(pc.c) | 1u;
   vec4 acc = vec4(0.0);
   if (KIND == 0u) {
-    for (uint n = 0u; n < pc.iters; ++n) { STEPS(FADD) }
+    LOOP(FADD, FADD)
   } else if (KIND == 1u) {
-    for (uint n = 0u; n < pc.iters; ++n) { STEPS(FMUL) }
+    LOOP(FMUL, FMUL)
   } else if (KIND == 2u) {
-    for (uint n = 0u; n < pc.iters; ++n) { STEPS(IALU) }
+    LOOP(IALU, IALU)
   } else if (KIND == 3u) {
-    for (uint n = 0u; n < pc.iters; ++n) { STEPS(IMUL) }
+    LOOP(IMUL, IMULD)
   } else if (KIND == 4u) {
-    for (uint n = 0u; n < pc.iters; ++n) { STEPS(CVT) }
+    LOOP(CVT, CVT)
   } else if (KIND == 5u) {
-    for (uint n = 0u; n < pc.iters; ++n) { STEPS(SEL) }
+    LOOP(SEL, SEL)
   } else if (KIND == 6u) {
     vec2 p = vec2(float(i & 255u), float((i >> 8u) & 255u)) * (1.0 / 256.0);
     for (uint n = 0u; n < pc.iters; ++n) {
       acc += textureLod(tex, p, pc.lod);
       p = fract(p + vec2(pc.step, pc.step * 0.5));
+    }
+  } else if (KIND == 9u) {  // window: independent iterations, each one dependent chain of 64 fadds
+    for (uint n = 0u; n < pc.iters; ++n) {
+      float y = x0 + float(n);
+      ALL8(YADD) ALL8(YADD) ALL8(YADD) ALL8(YADD) ALL8(YADD) ALL8(YADD) ALL8(YADD) ALL8(YADD)
+      acc.z += y;
+    }
+  } else if (KIND == 10u) {
+    for (uint n = 0u; n < pc.iters; ++n) {
+      if (x0 < pc.lod) { STEPS_INDEP(FADD) }
+    }
+  } else if (KIND == 12u) {
+    for (uint n = 0u; n < pc.iters; ++n) {
+      if (x0 < pc.lod) {
+        for (int r = 0; r < 4; r++) { ALL8(FADD) }
+      }
+    }
+  } else if (KIND == 11u) {
+    if (x0 < pc.lod) {
+      for (uint n = 0u; n < pc.iters; ++n) { STEPS_INDEP(FADD) }
     }
   } else if (KIND == 7u) {  // 16 vec4 per invocation, each pass over the buffer contiguous across invocations
     for (uint r = 0u; r < 16u; ++r) dst[i + r * pc.count] = src[i + r * pc.count] * pc.c;
