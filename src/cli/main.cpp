@@ -127,6 +127,8 @@ int main(int argc, char** argv) {
   modelCmd->add_option("--height", mo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   modelCmd->add_option("--samples", mo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
   modelCmd->add_option("--repeat", mo.repeat, "timed runs of each measured pass (median)")->check(CLI::Range(1, 100));
+  modelCmd->add_option("--vis-maps", mo.visMaps, "shadow maps K of the scene's visibility block (default: the scene's)")
+      ->check(CLI::Range(1, 1024));
   modelCmd->add_flag("--validate", mo.validate, "every shipped scene x technique on every present software device, ending with "
                                                 "the mean and worst absolute error");
   modelCmd->add_option("--scenes", mo.scenes, "--validate: scene files (default: every scenes/*.json)");

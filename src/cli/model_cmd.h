@@ -18,6 +18,7 @@ struct ModelOptions {
   std::string devicesDir = "devices";
   uint32_t width = 0, height = 0;
   uint32_t samples = 0;              // fis samples (0: the scene's)
+  uint32_t visMaps = 0;              // shadow maps K of the scene's visibility block (0: the scene's)
   uint32_t repeat = 3;               // timed runs of each measured pass (median)
   bool validate = false;             // every shipped scene x technique x software device
   std::vector<std::string> scenes;   // --validate: the scenes (default: every file in scenes/)

@@ -175,7 +175,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
       sp.invocations += m.positions.size() * v.directions.size();
       sp.bytesRead += (m.positions.size() * sizeof(VertexGpu) + m.indices.size() * 4) * v.directions.size();
     }
-    sp.invocations += 4 * ss.raster.quads;
+    sp.helperLanes = 0;  // depth only: no fragment shader, no quads run
     sp.dispatches = scene.objects.size() * v.directions.size();
     sp.bytesWritten = ss.raster.fragments * 4;  // depth writes; the maps are cleared and copied out
     sp.attachmentBytes = uint64_t(v.settings.size) * v.settings.size * 4 * v.directions.size();
