@@ -23,7 +23,6 @@
 #include "passes/passes_vk.h"
 #include "passes/visibility.h"
 #include "scene/scene.h"
-#include "util/timer.h"
 #include "vk/context.h"
 
 namespace shadetwin {

@@ -129,15 +129,16 @@ Prepared prepare(const emu::Texture& env, const GlintLightingSpec& spec) {
 }  // namespace
 
 namespace {
-// The driver over either lane build: the SIMD build (the emulator) or the counting one (the model).
-struct X8Lanes {
-  using Float = emu::F32<8>;
-  static auto column(auto&&... a) { return shade::x8::glintLightingColumn(a...); }
-};
-struct CountedLanes {
-  using Float = opcount::F<8>;
-  static auto column(auto&&... a) { return shade::counted::glintLightingColumn(a...); }
-};
+// The driver over either lane build (an instantiation namespace): the SIMD build (the emulator) or the counting one
+// (the model).
+#define GLINT_LIGHTING_LANES(Name, NS)                                                      \
+  struct Name {                                                                             \
+    using Float = shade::NS::Float;                                                         \
+    static auto column(auto&&... a) { return shade::NS::glintLightingColumn(a...); }        \
+  };
+GLINT_LIGHTING_LANES(X8Lanes, x8)
+GLINT_LIGHTING_LANES(CountedLanes, counted)
+#undef GLINT_LIGHTING_LANES
 
 template <class L>
 GlintLightingTable glintLightingLanes(const emu::Texture& env, const emu::DeviceProfile& dev, const GlintLightingSpec& spec) {

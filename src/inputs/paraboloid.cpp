@@ -34,17 +34,17 @@ void checkInputs(const emu::Texture& env, uint32_t faceSize) {
     throw std::invalid_argument("paraboloid atlas: face size " + std::to_string(faceSize) + " outside [4, 8192]");
 }
 
-// The emulator's driver over either lane build: the SIMD build (the emulator) or the counting one (the model).
-struct X8Lanes {
-  using Float = emu::F32<8>;
-  using Int = emu::I32<8>;
-  static auto resample(auto&&... a) { return shade::x8::paraboloidResample(a...); }
-};
-struct CountedLanes {
-  using Float = opcount::F<8>;
-  using Int = opcount::I<8>;
-  static auto resample(auto&&... a) { return shade::counted::paraboloidResample(a...); }
-};
+// The emulator's driver over either lane build (an instantiation namespace of lanes/instantiate.h or
+// model/counted.h): the SIMD build (the emulator) or the counting one (the model).
+#define PARABOLOID_LANES(Name, NS)                                                          \
+  struct Name {                                                                             \
+    using Float = shade::NS::Float;                                                         \
+    using Int = shade::NS::Int;                                                             \
+    static auto resample(auto&&... a) { return shade::NS::paraboloidResample(a...); }       \
+  };
+PARABOLOID_LANES(X8Lanes, x8)
+PARABOLOID_LANES(CountedLanes, counted)
+#undef PARABOLOID_LANES
 
 template <class L>
 std::vector<float> paraboloidAtlasLanes(const emu::Texture& env, const emu::DeviceProfile& dev, uint32_t faceSize) {

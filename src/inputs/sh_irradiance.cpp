@@ -38,21 +38,19 @@ void checkInput(const emu::Texture& env) {
 
 using V3f = shade::V3<float>;
 
-// The drivers over either lane build: SIMD / scalar (the emulator) or the counting ones (the model).
-struct EmuLanes {
-  using Int = emu::I32<8>;
-  using F1 = float;
-  static auto project(auto&&... a) { return shade::x8::shProjectRow(a...); }
-  static auto add3(auto&&... a) { return shade::scalar::shAdd3(a...); }
-  static auto scale(auto&&... a) { return shade::scalar::shIrradianceScale(a...); }
-};
-struct CountedLanes {
-  using Int = opcount::I<8>;
-  using F1 = opcount::F<1>;
-  static auto project(auto&&... a) { return shade::counted::shProjectRow(a...); }
-  static auto add3(auto&&... a) { return shade::counted1::shAdd3(a...); }
-  static auto scale(auto&&... a) { return shade::counted1::shIrradianceScale(a...); }
-};
+// The drivers over either pair of lane builds (8-lane projection, one-lane reduction): SIMD / scalar (the emulator)
+// or the counting ones (the model).
+#define SH_LANES(Name, NS8, NS1)                                                            \
+  struct Name {                                                                             \
+    using Int = shade::NS8::Int;                                                            \
+    using F1 = shade::NS1::Float;                                                           \
+    static auto project(auto&&... a) { return shade::NS8::shProjectRow(a...); }             \
+    static auto add3(auto&&... a) { return shade::NS1::shAdd3(a...); }                      \
+    static auto scale(auto&&... a) { return shade::NS1::shIrradianceScale(a...); }          \
+  };
+SH_LANES(EmuLanes, x8, scalar)
+SH_LANES(CountedLanes, counted, counted1)
+#undef SH_LANES
 
 // The pairwise tree of sh_reduce.comp over `rows` (16 vec4 per row, in place), then the band scale.
 template <class L>

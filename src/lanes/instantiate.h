@@ -58,5 +58,5 @@ namespace shadetwin::shade {
 namespace simd = x8;
 }
 
-#undef SHADE_INSTANTIATE
+// SHADE_INSTANTIATE stays defined: model/counted.h instantiates the counting lane types with it.
 #pragma GCC diagnostic pop

@@ -204,6 +204,14 @@ template <int N> inline I<N> floatBitsToInt(F<N> a) { return I<N>(emu::floatBits
 template <int N> inline F<N> uintBitsToFloat(U<N> a) { return F<N>(emu::uintBitsToFloat(a.x), a.t); }
 template <int N> inline F<N> intBitsToFloat(I<N> a) { return F<N>(emu::intBitsToFloat(a.x), a.t); }
 
+/// N texel fetches (one texel each, no filtering), unless inside a loop of an untaken block.
+inline void countFetches(int n) {
+  if (!counting()) return;
+  tick(kTexLookup, uint64_t(n));
+  tick(kTexel, uint64_t(n));
+  tick(kTexNearest, uint64_t(n));
+}
+
 /// Texels a linear-filtered lookup at `lod` reads on a texture of `levels` levels: 4 per level, two
 /// levels when the LOD falls strictly between levels (trilinear), one otherwise.
 inline uint64_t texelsRead(float lod, uint32_t levels) {
@@ -218,15 +226,15 @@ namespace shadetwin::shade {
 template <int N>
 V4<opcount::F<N>> textureLodLanes(const Sampler2D& s, opcount::F<N> u, opcount::F<N> v, opcount::F<N> lod,
                                   opcount::F<N> layer = opcount::F<N>(0.0f)) {
-  if (opcount::counting()) {
-  opcount::tick(opcount::kTexLookup, N);
-  const bool nearest = s.desc.magFilter == emu::Filter::Nearest && s.desc.minFilter == emu::Filter::Nearest;
-  for (int i = 0; i < N; ++i) {
-    const uint64_t texels = opcount::texelsRead(lod[i], s.tex->levelCount());
-    opcount::tick(opcount::kTexel, nearest ? 1 : texels);
-    opcount::tick(nearest ? opcount::kTexNearest : texels == 8 && s.desc.mipmapMode == emu::MipmapMode::Linear ? opcount::kTexTrilinear
-                                                                                                            : opcount::kTexBilinear);
-  }
+  if (opcount::counting()) {  // not inside a loop of an untaken block
+    opcount::tick(opcount::kTexLookup, N);
+    const bool nearest = s.desc.magFilter == emu::Filter::Nearest && s.desc.minFilter == emu::Filter::Nearest;
+    for (int i = 0; i < N; ++i) {
+      const uint64_t texels = opcount::texelsRead(lod[i], s.tex->levelCount());
+      opcount::tick(opcount::kTexel, nearest ? 1 : texels);
+      const bool twoLevels = texels == 8 && s.desc.mipmapMode == emu::MipmapMode::Linear;
+      opcount::tick(nearest ? opcount::kTexNearest : twoLevels ? opcount::kTexTrilinear : opcount::kTexBilinear);
+    }
   }
   const V4<emu::F32<N>> r = textureLodLanes(s, u.x, v.x, lod.x, layer.x);
   const double t = std::max({u.t, v.t, lod.t, layer.t});  // the lookup's own cost is the texture term, not the schedule
@@ -235,11 +243,7 @@ V4<opcount::F<N>> textureLodLanes(const Sampler2D& s, opcount::F<N> u, opcount::
 template <int N>
 V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::I<N> y, int level,
                                    opcount::I<N> layer = opcount::I<N>(0)) {
-  if (opcount::counting()) {
-    opcount::tick(opcount::kTexLookup, N);
-    opcount::tick(opcount::kTexel, N);
-    opcount::tick(opcount::kTexNearest, N);  // a fetch: one texel, no filtering
-  }
+  opcount::countFetches(N);
   const V4<emu::F32<N>> r = texelFetchLanes(s, x.x, y.x, level, layer.x);
   const double t = std::max({x.t, y.t, layer.t});
   return V4<opcount::F<N>>(opcount::F<N>(r.x, t), opcount::F<N>(r.y, t), opcount::F<N>(r.z, t), opcount::F<N>(r.w, t));
@@ -247,11 +251,7 @@ V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::
 template <int N>
 void uintFetchLanes(const USampler2DArray& s, opcount::I<N> x, opcount::I<N> y, opcount::I<N> layer, int level, opcount::U<N>& a,
                     opcount::U<N>& b, opcount::U<N>& c, opcount::U<N>& d) {
-  if (opcount::counting()) {
-    opcount::tick(opcount::kTexLookup, N);
-    opcount::tick(opcount::kTexel, N);
-    opcount::tick(opcount::kTexNearest, N);  // a fetch: one texel, no filtering
-  }
+  opcount::countFetches(N);
   emu::U32<N> ra, rb, rc, rd;
   uintFetchLanes(s, x.x, y.x, layer.x, level, ra, rb, rc, rd);
   a.x = ra, b.x = rb, c.x = rc, d.x = rd;

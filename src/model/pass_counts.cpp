@@ -1,7 +1,10 @@
 #include "model/pass_counts.h"
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
+
+#include <tbb/task_arena.h>
 
 #include "inputs/glints.h"
 #include "inputs/material.h"
@@ -55,7 +58,40 @@ std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float
   return chain;
 }
 
+// Adds another run of the same pass (the material maps' MIP chain after the atlas's).
+void accumulate(PassCounts& into, const PassCounts& c) {
+  for (int k = 0; k < opcount::kKinds; ++k) into.ops[size_t(k)] += c.ops[size_t(k)];
+  into.invocations += c.invocations, into.dispatches += c.dispatches;
+  into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.scheduledSeconds += c.scheduledSeconds;
+}
+
 }  // namespace
+
+std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& f, const CoreModel& core, double* scheduledSeconds) {
+  std::array<uint64_t, opcount::kKinds> t{};
+  tbb::task_arena one(1);  // the counters are per thread: one thread does all the work
+  one.execute([&] {
+    opcount::counts = {};
+    opcount::executeEveryBlock = core.executeEveryBlock;
+    opcount::Scheduler& s = opcount::sched;
+    s.on = core.on;
+    if (core.on) {
+      s.latency = core.latency, s.interval = core.interval, s.window = std::max(1u, core.window);
+      s.start();
+    }
+    f();
+    s.on = false;
+    opcount::executeEveryBlock = false;
+    if (scheduledSeconds) *scheduledSeconds = core.on ? s.lastRetire : 0.0;
+    for (int k = 0; k < opcount::kKinds; ++k) t[size_t(k)] = opcount::counts[size_t(k)];
+  });
+  return t;
+}
+
+void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks, double lanes) {
+  for (int k = 0; k < opcount::kKinds; ++k)
+    c.ops[size_t(k)] += double(ticks[size_t(k)]) * (k < opcount::kTexLookup ? lanes : 1.0);
+}
 
 FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev, const CoreModel& core) {
   FrameCounts f;
@@ -146,15 +182,9 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
       const auto chain = countMips(mp, m.texels, m.width, m.height, m.layers, core);
       for (size_t l = 1; l < chain.size(); ++l)
         check("mips", chain[l].data(), reinterpret_cast<const float*>(in.maps->levels()[l].data()), chain[l].size());
-      bool merged = false;
-      for (PassCounts& p : f.passes)
-        if (p.pass == "mips") {
-          for (int k = 0; k < opcount::kKinds; ++k) p.ops[size_t(k)] += mp.ops[size_t(k)];
-          p.invocations += mp.invocations, p.dispatches += mp.dispatches;
-          p.bytesRead += mp.bytesRead, p.bytesWritten += mp.bytesWritten, p.scheduledSeconds += mp.scheduledSeconds;
-          merged = true;
-        }
-      if (!merged) f.passes.push_back(mp);
+      auto atlasMips = std::find_if(f.passes.begin(), f.passes.end(), [](const PassCounts& p) { return p.pass == "mips"; });
+      if (atlasMips != f.passes.end()) accumulate(*atlasMips, mp);
+      else f.passes.push_back(mp);
     }
   }
 

@@ -7,7 +7,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include "emu/fpenv.h"
 #include "inputs/env_sampling.h"
@@ -29,32 +28,6 @@ namespace counted_pass {
 }  // namespace counted_pass
 
 namespace model {
-
-std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& f, const CoreModel& core, double* scheduledSeconds) {
-  std::array<uint64_t, opcount::kKinds> t{};
-  tbb::task_arena one(1);  // the counters are per thread: one thread does all the work
-  one.execute([&] {
-    opcount::counts = {};
-    opcount::executeEveryBlock = core.executeEveryBlock;
-    opcount::Scheduler& s = opcount::sched;
-    s.on = core.on;
-    if (core.on) {
-      s.latency = core.latency, s.interval = core.interval, s.window = std::max(1u, core.window);
-      s.start();
-    }
-    f();
-    s.on = false;
-    opcount::executeEveryBlock = false;
-    if (scheduledSeconds) *scheduledSeconds = core.on ? s.lastRetire : 0.0;
-    for (int k = 0; k < opcount::kKinds; ++k) t[size_t(k)] = opcount::counts[size_t(k)];
-  });
-  return t;
-}
-
-void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks, double lanes) {
-  for (int k = 0; k < opcount::kKinds; ++k)
-    c.ops[size_t(k)] += double(ticks[size_t(k)]) * (k < opcount::kTexLookup ? lanes : 1.0);
-}
 
 PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInputs& in, const emu::DeviceProfile& dev,
                           const VisibilityImage* vis, std::vector<float>* out, const CoreModel& core) {

@@ -40,18 +40,17 @@ ObjectGpu objectGpu(const Object& o) {
 }
 
 namespace {
-// The driver over either lane build: the scalar build (the emulator's vertex and fragment stages) or the counting one
-// (the model).
-struct ScalarLanes {
-  using Float = float;
-  static auto vertex(auto&&... a) { return shade::scalar::gbufferVertex(a...); }
-  static auto fragment(auto&&... a) { return shade::scalar::gbufferFragment(a...); }
-};
-struct CountedLanes {
-  using Float = opcount::F<1>;
-  static auto vertex(auto&&... a) { return shade::counted1::gbufferVertex(a...); }
-  static auto fragment(auto&&... a) { return shade::counted1::gbufferFragment(a...); }
-};
+// The driver over either lane build (an instantiation namespace): the scalar build (the emulator's vertex and
+// fragment stages) or the counting one (the model).
+#define GBUFFER_LANES(Name, NS)                                                             \
+  struct Name {                                                                             \
+    using Float = shade::NS::Float;                                                         \
+    static auto vertex(auto&&... a) { return shade::NS::gbufferVertex(a...); }              \
+    static auto fragment(auto&&... a) { return shade::NS::gbufferFragment(a...); }          \
+  };
+GBUFFER_LANES(ScalarLanes, scalar)
+GBUFFER_LANES(CountedLanes, counted1)
+#undef GBUFFER_LANES
 
 template <class L>
 void gbufferLanes(const Scene& scene, const emu::DeviceProfile& dev, GBuffer& g, GbufferStats* stats) {

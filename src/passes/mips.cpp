@@ -45,21 +45,19 @@ void downsampleScalar(const float* src, float* dst, int sw, int sh, int layers) 
     }
 }
 
-// The 8-lane driver over either lane build: the SIMD build (the emulator) or the counting one (the model).
-struct X8Lanes {
-  using Float = emu::F32<8>;
-  using Int = emu::I32<8>;
-  using MipTaps = shade::x8::MipTaps;
-  static auto mipTaps(auto&&... a) { return shade::x8::mipTaps(a...); }
-  static auto mipCombine(auto&&... a) { return shade::x8::mipCombine(a...); }
-};
-struct CountedLanes {
-  using Float = opcount::F<8>;
-  using Int = opcount::I<8>;
-  using MipTaps = shade::counted::MipTaps;
-  static auto mipTaps(auto&&... a) { return shade::counted::mipTaps(a...); }
-  static auto mipCombine(auto&&... a) { return shade::counted::mipCombine(a...); }
-};
+// The 8-lane driver over either lane build (an instantiation namespace): the SIMD build (the emulator) or the
+// counting one (the model).
+#define MIP_LANES(Name, NS)                                                                 \
+  struct Name {                                                                             \
+    using Float = shade::NS::Float;                                                         \
+    using Int = shade::NS::Int;                                                             \
+    using MipTaps = shade::NS::MipTaps;                                                     \
+    static auto mipTaps(auto&&... a) { return shade::NS::mipTaps(a...); }                   \
+    static auto mipCombine(auto&&... a) { return shade::NS::mipCombine(a...); }             \
+  };
+MIP_LANES(X8Lanes, x8)
+MIP_LANES(CountedLanes, counted)
+#undef MIP_LANES
 
 // One destination level through the 8-lane SIMD build: 8 destination texels of a row per step.
 template <class X>

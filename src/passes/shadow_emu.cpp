@@ -65,15 +65,16 @@ ShadowMaps shadowEmu(const Scene& scene, const std::vector<Vec3>& directions, ui
 }
 
 namespace {
-// The driver over either lane build: the scalar build (the emulator's vertex stage) or the counting one (the model).
-struct ScalarLanes {
-  using Float = float;
-  static auto vertex(auto&&... a) { return shade::scalar::shadowVertex(a...); }
-};
-struct CountedLanes {
-  using Float = opcount::F<1>;
-  static auto vertex(auto&&... a) { return shade::counted1::shadowVertex(a...); }
-};
+// The driver over either lane build (an instantiation namespace): the scalar build (the emulator's vertex stage) or
+// the counting one (the model).
+#define SHADOW_LANES(Name, NS)                                                              \
+  struct Name {                                                                             \
+    using Float = shade::NS::Float;                                                         \
+    static auto vertex(auto&&... a) { return shade::NS::shadowVertex(a...); }               \
+  };
+SHADOW_LANES(ScalarLanes, scalar)
+SHADOW_LANES(CountedLanes, counted1)
+#undef SHADOW_LANES
 
 template <class L>
 void shadowLanes(const Scene& scene, const std::vector<Vec3>& directions, uint32_t size, const emu::DeviceProfile& dev,

@@ -16,24 +16,22 @@
 namespace shadetwin {
 
 namespace {
+// The drivers over either lane build (an instantiation namespace): the SIMD build (the emulator) or the counting one
+// (the model).
+#define VISIBILITY_LANES(Name, NS)                                                          \
+  struct Name {                                                                             \
+    using Float = shade::NS::Float;                                                         \
+    using Int = shade::NS::Int;                                                             \
+    using VisSettings = shade::NS::VisSettings;                                             \
+    static auto fit(auto&&... a) { return shade::NS::visFit(a...); }                        \
+    static auto filter(auto&&... a) { return shade::NS::visFilter(a...); }                  \
+  };
+VISIBILITY_LANES(X8Lanes, x8)
+VISIBILITY_LANES(CountedLanes, counted)
+#undef VISIBILITY_LANES
+
 // The emulated kernels' loop: TBB over blocks of 8 pixels (row-major; tail lanes repeat the last
 // pixel) in the compute stage's denormal mode; kernel(block) gives the 8 lanes' coefficients.
-// The drivers over either lane build: the SIMD build (the emulator) or the counting one (the model).
-struct X8Lanes {
-  using Float = emu::F32<8>;
-  using Int = emu::I32<8>;
-  using VisSettings = shade::x8::VisSettings;
-  static auto fit(auto&&... a) { return shade::x8::visFit(a...); }
-  static auto filter(auto&&... a) { return shade::x8::visFilter(a...); }
-};
-struct CountedLanes {
-  using Float = opcount::F<8>;
-  using Int = opcount::I<8>;
-  using VisSettings = shade::counted::VisSettings;
-  static auto fit(auto&&... a) { return shade::counted::visFit(a...); }
-  static auto filter(auto&&... a) { return shade::counted::visFilter(a...); }
-};
-
 template <class Kernel>
 VisibilityImage perPixelBlocks(uint32_t width, uint32_t height, const emu::DeviceProfile& dev, Kernel kernel) {
   VisibilityImage out;

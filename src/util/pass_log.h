@@ -5,22 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "util/thread_log.h"
+
 namespace shadetwin {
 
-class PassLog {
- public:
-  PassLog() : prev_(active()) { active() = this; }
-  ~PassLog() { active() = prev_; }
-  PassLog(const PassLog&) = delete;
-  PassLog& operator=(const PassLog&) = delete;
+struct PassLog : ThreadLog<PassLog> {
   std::vector<std::string> names;  // in the order the passes ran, repeats included
-  static PassLog*& active() {
-    thread_local PassLog* p = nullptr;
-    return p;
-  }
-
- private:
-  PassLog* prev_;
 };
 
 inline void notePass(const char* name) {

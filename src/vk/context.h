@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "util/thread_log.h"
+
 namespace shadetwin::vk {
 
 struct Error : std::runtime_error {
@@ -152,25 +154,13 @@ struct Binding {
 /// (full-screen triangle over a width x ceil(count/width) target, item = y * width + x).
 /// The submit-to-completion times of the Kernel::run calls made on this thread while a DispatchLog is alive (the
 /// performance model's measured side of passes built and torn down inside one function, e.g. the technique inputs).
-class DispatchLog {
- public:
-  DispatchLog() : prev_(active()) { active() = this; }
-  ~DispatchLog() { active() = prev_; }
-  DispatchLog(const DispatchLog&) = delete;
-  DispatchLog& operator=(const DispatchLog&) = delete;
+struct DispatchLog : ThreadLog<DispatchLog> {
   std::vector<double> ms;  // one per dispatch, in order
   double totalMs() const {
     double t = 0;
     for (double m : ms) t += m;
     return t;
   }
-  static DispatchLog*& active() {
-    thread_local DispatchLog* p = nullptr;
-    return p;
-  }
-
- private:
-  DispatchLog* prev_;
 };
 
 class Kernel {
