@@ -25,21 +25,126 @@ bool same(float a, float b) { return toBits(a) == toBits(b); }
 }  // namespace
 
 TEST(ExactMath, DivIsCorrectlyRoundedOnAnyBits) {
+  // exDivPortable is what a GPU runs (exDiv without the C++ builds' native fast path): random bit
+  // patterns (NaN, inf, zero, subnormal operands and quotients, overflow) in the scalar and 8-lane builds.
+  namespace x8 = shadetwin::shade::x8;
+  using F8 = emu::F32<8>;
   std::mt19937 rng(11);
-  for (int i = 0; i < 2000000; ++i) {
+  F8 va, vb;
+  for (int i = 0; i < 4000000; ++i) {
     float a = fromBits(rng()), b = fromBits(rng());
     if (i % 3 == 0) b = fromBits(rng() & 0x807fffffu);  // subnormal divisors
+    if (i % 5 == 0) a = fromBits(rng() & 0x807fffffu);  // subnormal dividends
     float want = float(double(a) / double(b));            // double division then rounding is exact
-    float got = sc::exDiv(a, b);
+    float got = sc::exDivPortable(a, b);
     if (std::isnan(want)) ASSERT_EQ(toBits(got), 0x7fc00000u) << a << " / " << b;
     else ASSERT_TRUE(same(got, want)) << a << " / " << b << " got " << got << " want " << want;
+    va.set(i % 8, a), vb.set(i % 8, b);
+    if (i % 8 == 7) {
+      const F8 q = x8::exDivPortable(va, vb);
+      for (int l = 0; l < 8; ++l) ASSERT_TRUE(same(q[l], sc::exDivPortable(va[l], vb[l])));
+    }
   }
 }
 
-TEST(ExactMath, NativeFastPathsGiveTheRecurrenceBits) {
+TEST(ExactMath, DivIsCorrectlyRoundedAtQuotientBoundaries) {
+  // Where an estimate-and-correct division goes wrong if its correction is short: exact quotients
+  // (a = q b with small integers q and 24-bit b), quotients next to them (a one ulp off q b), equal
+  // significands, the largest and smallest significands, and every divisor significand against a few
+  // dividends; each at exponents that give normal, subnormal (ties included) and overflowing results.
+  // (The exact quotients are where the upward correction acts: without it 72 of them come out wrong.)
+  std::mt19937 rng(29);
+  auto check = [](float a, float b) {
+    const float want = float(double(a) / double(b)), got = sc::exDivPortable(a, b);
+    if (std::isnan(want)) return toBits(got) == 0x7fc00000u;
+    return same(got, want);
+  };
+  const int exps[] = {0, 1, -1, 100, -100, 126, -126, 140, -140, 150, -150};
+  for (int i = 0; i < 400000; ++i) {
+    const uint32_t mb = 0x00800000u | (rng() & 0x007fffffu);
+    const uint32_t qi = 1u + rng() % 255u;
+    const float b = fromBits(0x3f800000u | (mb & 0x007fffffu));
+    const float prod = float(qi) * b;                   // exact when it fits 24 bits, else rounded
+    const uint32_t pb = toBits(prod);
+    const int e = exps[i % 11];
+    const float s = std::ldexp(1.0f, e / 2), t = std::ldexp(1.0f, e - e / 2);
+    for (uint32_t bits : {pb - 1u, pb, pb + 1u}) {
+      const float a = fromBits(bits);
+      ASSERT_TRUE(check(a * s, b / t)) << a << " * 2^" << e / 2 << " / " << b;
+      ASSERT_TRUE(check(a, b)) << a << " / " << b;
+    }
+  }
+  // Remainders at their extremes (1, 2, 3, Mb - 1, Mb - 2, Mb - 3) and at the guard bit's boundary
+  // (Mb / 2, Mb / 2 + 1): Ma 2^k = qa Mb + rem with qa = -rem Mb^-1 mod 2^k for odd Mb.
+  int built = 0;
+  for (int i = 0; i < 400000; ++i) {
+    const uint64_t mb = 0x00800001u | (rng() & 0x007ffffeu);
+    uint64_t inv = mb;
+    for (int it = 0; it < 5; ++it) inv = inv * (2 - mb * inv);  // Mb^-1 mod 2^64 (Newton, 5 -> 64 bits)
+    const uint64_t rems[] = {1, 2, 3, mb - 1, mb - 2, mb - 3, mb / 2, mb / 2 + 1};
+    const uint64_t rem = rems[i % 8];
+    for (int k : {23, 24}) {
+      const uint64_t mask = (1ull << k) - 1;
+      const uint64_t qa = ((0 - rem * inv) & mask) + (k == 23 ? (1ull << 23) : 0);
+      if (qa < (1ull << 23) || qa >= (1ull << 24)) continue;
+      const uint64_t ma = (qa * mb + rem) >> k;
+      if (ma < (1ull << 23) || ma >= (1ull << 24) || (k == 24) != (ma < mb)) continue;
+      const float a = fromBits(0x3f800000u | uint32_t(ma & 0x7fffffu)), b = fromBits(0x3f800000u | uint32_t(mb & 0x7fffffu));
+      ASSERT_TRUE(check(a, b)) << a << " / " << b;
+      ASSERT_TRUE(check(a * 1e-20f, b * 1e20f)) << a << " / " << b;  // the same significands, subnormal
+      ++built;
+    }
+  }
+  EXPECT_GT(built, 200000);
+  const uint32_t dividends[] = {0x00800000u, 0x00800001u, 0x00c00000u, 0x00ffffffu, 0x00fffffeu, 0x00aaaaabu};
+  for (uint32_t mb = 0x00800000u; mb < 0x01000000u; mb += 3) {
+    const float b = fromBits(0x3f800000u | (mb & 0x007fffffu));
+    for (uint32_t ma : dividends) {
+      const float a = fromBits(0x3f800000u | (ma & 0x007fffffu));
+      ASSERT_TRUE(check(a, b)) << a << " / " << b;
+      ASSERT_TRUE(check(a * 1e-30f, b * 1e10f)) << a << " / " << b;  // subnormal quotient
+    }
+  }
+}
+
+TEST(ExactMath, EstimatesMeetTheirBounds) {
+  // The Newton estimates under exDivPortable / exSqrtPortable (and the log's reciprocal): relative error
+  // below 2^-22.6 / 2^-22.5 for every float of their ranges; the corrections cover the rest with wide margins.
+  double rcp = 0, rsqrt = 0;
+  for (uint32_t b = 0x3f800000u; b <= 0x40200000u; ++b) {  // [1, 2.5]
+    const double d = fromBits(b);
+    rcp = std::max(rcp, std::fabs(double(sc::xmRcpApprox(fromBits(b))) * d - 1.0));
+  }
+  for (uint32_t b = 0x3f800000u; b <= 0x40800000u; ++b) {  // [1, 4]
+    const double n = fromBits(b);
+    rsqrt = std::max(rsqrt, std::fabs(double(sc::xmRsqrtApprox(fromBits(b))) * std::sqrt(n) - 1.0));
+  }
+  EXPECT_LT(rcp, std::exp2(-22.6));  // the bounds exact_math.h's derivations use
+  EXPECT_LT(rsqrt, std::exp2(-22.5));
+  EXPECT_GT(rcp, std::ldexp(1.0, -25));  // not exact: the corrections are what make the results exact
+  EXPECT_GT(rsqrt, std::ldexp(1.0, -25));
+}
+
+TEST(ExactMath, PortableSqrtIsCorrectlyRoundedOnEveryInputClass) {
+  // exSqrtPortable depends only on the significand and the exponent's parity: every float in [1, 4)
+  // covers all of them; plus every subnormal and the specials.
+  for (uint32_t b = 0x3f800000u; b < 0x40800000u; ++b)
+    ASSERT_TRUE(same(sc::exSqrtPortable(fromBits(b)), float(std::sqrt(double(fromBits(b)))))) << fromBits(b);
+  for (uint32_t b = 1u; b < 0x00800000u; ++b)
+    ASSERT_TRUE(same(sc::exSqrtPortable(fromBits(b)), float(std::sqrt(double(fromBits(b)))))) << fromBits(b);
+  for (uint32_t b : {0x7f7fffffu, 0x00800000u, 0x00000001u})
+    ASSERT_TRUE(same(sc::exSqrtPortable(fromBits(b)), float(std::sqrt(double(fromBits(b))))));
+  EXPECT_TRUE(same(sc::exSqrtPortable(-0.0f), -0.0f));
+  EXPECT_TRUE(same(sc::exSqrtPortable(0.0f), 0.0f));
+  EXPECT_EQ(sc::exSqrtPortable(INFINITY), INFINITY);
+  EXPECT_EQ(toBits(sc::exSqrtPortable(-1e-45f)), 0x7fc00000u);
+  EXPECT_EQ(toBits(sc::exSqrtPortable(-INFINITY)), 0x7fc00000u);
+}
+
+TEST(ExactMath, NativeFastPathsGiveThePortableBits) {
   // The C++ builds divide / take square roots natively when every lane is normal (lanes/native_exact.h).
   // Vectors of 8 whose lanes are random normals, or mixed with one special lane (zero, subnormal, inf,
-  // NaN: the whole vector takes the recurrence), in the default mode and under FTZ/DAZ (a flushing
+  // NaN: the whole vector takes the portable path), in the default mode and under FTZ/DAZ (a flushing
   // stage): every lane equals the correctly rounded result, subnormal quotients included.
   namespace x8 = shadetwin::shade::x8;
   using F8 = emu::F32<8>;

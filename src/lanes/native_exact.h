@@ -1,13 +1,14 @@
 // C++ fast paths of the exact-math layer (shade/exact_math.h), for the emulator's speed only.
 //
-// exDiv and exSqrt are correctly rounded to nearest-even for every input (integer recurrences; tested
+// exDiv and exSqrt are correctly rounded to nearest-even for every input (a float estimate made exact by an
+// integer residual and corrections: exDivPortable / exSqrtPortable; tested
 // on random bit patterns and dense sweeps). IEEE 754 requires the CPU's division and square root to be
 // correctly rounded too, so wherever both agree on what is being rounded they give the same bits:
 // every operand a normal finite number (no zero, subnormal, inf or NaN: their encodings and the
-// FTZ/DAZ modes of a flushing stage are where a native operation and the integer recurrence could
+// FTZ/DAZ modes of a flushing stage are where a native operation and the portable path could
 // differ, e.g. NaN payloads) and a normal result (no underflow to a subnormal or zero, no overflow).
 // nativeDiv / nativeSqrt return the native result and `ok` when that holds for every lane of the
-// vector; otherwise exact_math.h runs its recurrence for the whole vector (the GPU always does).
+// vector; otherwise exact_math.h runs its portable path for the whole vector (the GPU always does).
 // The rounding mode is round-to-nearest-even (the emulator never changes it).
 #pragma once
 #include <cstdint>

@@ -6,8 +6,8 @@
 // rounded results, as measured by tests/exact_math_test.cpp and `shadetwin verify math`, is listed in
 // docs/DESIGN.md ("Exact math").
 //
-// Denormals: exDiv and exSqrt work on integer significands and honour denormal inputs and outputs in
-// every stage. The polynomial functions use float add/mul, so in a stage whose device profile flushes
+// Denormals: exDiv and exSqrt work on integer significands (their float estimates stay normal) and
+// honour denormal inputs and outputs in every stage. The polynomial functions use float add/mul, so in a stage whose device profile flushes
 // denormals (lavapipe fragment) they flush exactly as the device's own float ops do; the emulator runs
 // such a stage with FTZ/DAZ set, which gives the same bits.
 
@@ -52,19 +52,61 @@ Uint xmRoundPack(Uint sign, Uint sig, Int e2, Mask sticky) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Division and square root: correctly rounded, by integer digit recurrences.
+// Division and square root: correctly rounded, from a float estimate and an exact integer residual.
 //
-// Derivation: a/b = (Ma/Mb) 2^(Ea-Eb) with 24-bit significands. Restoring division produces
-// q = floor(Ma 2^25 / Mb) (26 iterations, q in [2^24, 2^26)) and a remainder whose non-zero-ness is
-// the sticky bit; q, sticky and the exponent determine the correctly rounded result exactly
-// (xmRoundPack). sqrt: make the exponent even, then the bit-pair recurrence gives
-// floor(sqrt(m 2^28)) in [2^25, 2^27) with an exact remainder. We chose integer recurrences over
-// Newton iterations with Dekker two-products because they are exact by construction, including
-// subnormal results, and need no case analysis of the last-ulp correction (docs/DESIGN.md).
+// Derivation (division). a/b = (Ma/Mb) 2^(Ea-Eb) with 24-bit significands Ma, Mb in [2^23, 2^24).
+// Let k = 24 if Ma < Mb, else 23, so that the integer quotient qa = floor(Ma 2^k / Mb) lies in
+// [2^23, 2^24), where float holds every integer exactly. (1) Estimate: R ~ 1/b' for b' = Mb 2^-23 in
+// [1, 2) from a bit-trick seed and three Newton steps x(2 - b'x) (mul/sub only; relative error below
+// 2^-22.6 on every float of [1, 2.5], tests/exact_math_test.cpp), t = (a' R) 2^k, so
+// |t - Ma 2^k/Mb| < 2^24 2^-22.6 + 1/2 (the product's rounding) < 3.2 and qf = floor(t) is within 4 of
+// qa (measured: qf - qa in -2..+4). (2) Exact residual: rem = Ma 2^k - qf Mb is a small integer
+// (|rem| < 5 Mb < 2^27), so it is exact in wrapping 32-bit integer arithmetic although both terms
+// are ~2^47: the low 32 bits of each suffice. (3) One refinement d = floor(rem R 2^-23) (rem/Mb to
+// ~10^-6, so floor(rem/Mb) - d is -1, 0 or +1) and (4) one correction each way make rem' in [0, Mb),
+// which is the definition of qa: the result is exact whatever the estimate's last bits, so it does
+// not depend on how a device rounds the estimate. Then a guard bit (2 rem' >= Mb) and the sticky bit
+// (2 rem' - guard Mb != 0) give q = floor(Ma 2^(k+1)/Mb) in [2^24, 2^25) and whether a tail remains:
+// xmRoundPack rounds that exactly, subnormal and overflowing quotients included. Every float
+// operand and result is in [2^-25, 2^25], never subnormal: the same bits in flushing stages.
+// This replaces a 26-step restoring division (issue 19 item 5; docs/RESULTS.md "Exact-math rework"):
+// 164 counted operations per division instead of 282, 101 per square root instead of 371. It is
+// Markstein's estimate-and-correct scheme with the residual formed by integers instead of an fma or
+// Dekker's two-product.
+//
+// Derivation (square root). x = Mx 2^(e-23); with c = e & 1 let N = Mx 2^(23+c) in [2^46, 2^48), so
+// sqrt(x) = sqrt(N) 2^E with E = (e - 46 - c)/2 and r = floor(sqrt(N)) in [2^23, 2^24). Estimate from
+// an inverse-square-root seed and three Newton steps on n = N 2^-46 in [1, 4) (relative error below
+// 2^-22.5, so within 4 of the root;
+// measured over every input class: -3..+4); the exact residual rem = N - r^2 (|rem| < 2^28: again exact
+// in wrapping 32-bit arithmetic), one refinement
+// floor(rem / 2 sqrt(N)) and one correction each way give rem in [0, 2r]. sqrt(N) >= r + 1/2 iff
+// rem > r (integers; sqrt(N) = r + 1/2 is impossible, so there are no ties), and a square root of a
+// float is always a normal float, so the result's bits are ((E + 149) << 23) + r + [rem > r]: the
+// carry of r + 1 = 2^24 into the exponent field comes out of the addition.
 
-Float exDiv(Float a, Float b) {
-  NativeResult fast = nativeDiv(a, b);  // C++ builds only: same bits where every lane is normal
-  if (fast.ok) return fast.value;
+// 1/d for d in [1, 2.5]: bit-trick seed (relative error <= 0.051), three Newton steps x(2 - dx)
+// (mul/sub only); relative error below 2^-22.6 (tests/exact_math_test.cpp: every float in [1, 2.5]).
+Float xmRcpApprox(Float d) {
+  PRECISE Float x = uintBitsToFloat(0x7ef311c3u - floatBitsToUint(d));
+  x = x * (2.0f - d * x);
+  x = x * (2.0f - d * x);
+  x = x * (2.0f - d * x);
+  return x;
+}
+
+// 1/sqrt(n) for n in [1, 4]: bit-trick seed, three Newton steps y(3/2 - (n/2) y^2); relative error
+// below 2^-22.5 (tests/exact_math_test.cpp: every float in [1, 4]).
+Float xmRsqrtApprox(Float n) {
+  PRECISE Float h = 0.5f * n;
+  PRECISE Float y = uintBitsToFloat(0x5f3759dfu - (floatBitsToUint(n) >> 1u));
+  y = y * (1.5f - h * (y * y));
+  y = y * (1.5f - h * (y * y));
+  y = y * (1.5f - h * (y * y));
+  return y;
+}
+
+Float exDivPortable(Float a, Float b) {
   Uint ua = floatBitsToUint(a);
   Uint ub = floatBitsToUint(b);
   Uint sign = (ua ^ ub) & 0x80000000u;
@@ -78,47 +120,75 @@ Float exDiv(Float a, Float b) {
   Mask bZero = ab == 0u;
   XmUnpacked A = xmUnpack(select(aZero || aa >= 0x7f800000u, 0x3f800000u, aa));
   XmUnpacked B = xmUnpack(select(bZero || ab >= 0x7f800000u, 0x3f800000u, ab));
-  Uint rem = A.m;
-  Uint q = 0u;
-  for (int i = 0; i < 26; i++) {
-    Mask ge = rem >= B.m;
-    q = (q << 1u) | select(ge, 1u, 0u);
-    rem = select(ge, rem - B.m, rem) << 1u;
-  }
-  Uint r = xmRoundPack(sign, q, A.e - B.e - 25, rem != 0u);
+  PRECISE Float an = uintBitsToFloat((A.m & 0x007fffffu) | 0x3f800000u);  // Ma 2^-23 in [1, 2)
+  PRECISE Float bn = uintBitsToFloat((B.m & 0x007fffffu) | 0x3f800000u);
+  PRECISE Float rcp = xmRcpApprox(bn);
+  Mask below = A.m < B.m;
+  Uint k = select(below, 24u, 23u);
+  PRECISE Float t = (an * rcp) * select(below, 16777216.0f, 8388608.0f);
+  Uint q = Uint(Int(floor(t)));
+  Uint num = A.m << k;  // low 32 bits of Ma 2^k
+  Int rem = Int(num - q * B.m);
+  PRECISE Float est = (Float(rem) * rcp) * 1.1920928955078125e-07f;  // rem / Mb (2^-23 R)
+  Int d = Int(floor(est));
+  q = Uint(Int(q) + d);
+  rem = Int(num - q * B.m);
+  Mask low = rem < 0;
+  q = select(low, q - 1u, q);
+  rem = select(low, rem + Int(B.m), rem);
+  Mask high = rem >= Int(B.m);
+  q = select(high, q + 1u, q);
+  rem = select(high, rem - Int(B.m), rem);
+  Uint rem2 = Uint(rem) << 1u;
+  Mask guard = rem2 >= B.m;
+  rem2 = select(guard, rem2 - B.m, rem2);
+  Uint r = xmRoundPack(sign, (q << 1u) | select(guard, 1u, 0u), A.e - B.e - Int(k) - 1, rem2 != 0u);
   r = select(aZero || bInf, sign, r);
   r = select(aInf || bZero, sign | 0x7f800000u, r);
   r = select(aNan || bNan || (aZero && bZero) || (aInf && bInf), 0x7fc00000u, r);
   return uintBitsToFloat(r);
 }
 
-Float exSqrt(Float x) {
-  NativeResult fast = nativeSqrt(x);
-  if (fast.ok) return fast.value;
+Float exSqrtPortable(Float x) {
   Uint ux = floatBitsToUint(x);
   Uint ax = ux & 0x7fffffffu;
   Mask nan = ax > 0x7f800000u || ux > 0x80000000u;  // NaN, or negative non-zero (incl. -inf)
   Mask keep = ax == 0u || ux == 0x7f800000u;       // sqrt(+-0) = +-0, sqrt(+inf) = +inf
   XmUnpacked X = xmUnpack(select(keep || nan, 0x3f800000u, ax));
-  Int k = X.e - 23;
-  Mask odd = (k & 1) != 0;
-  Uint m = select(odd, X.m << 1u, X.m);  // x = m 2^k, k even, m < 2^25
-  k = select(odd, k - 1, k);
-  Uint res = 0u;
-  Uint rem = 0u;
-  for (int i = 0; i < 27; i++) {  // radicand m 2^28: 27 bit pairs, the first 13 from m
-    int sh = 24 - 2 * i;
-    Uint pair = sh >= 0 ? ((m >> uint(sh)) & 3u) : Uint(0u);
-    rem = (rem << 2u) | pair;
-    Uint trial = (res << 2u) | 1u;
-    Mask ge = rem >= trial;
-    rem = select(ge, rem - trial, rem);
-    res = (res << 1u) | select(ge, 1u, 0u);
-  }
-  Uint r = xmRoundPack(0u, res, (k >> 1) - 14, rem != 0u);
-  r = select(keep, ux, r);
-  r = select(nan, 0x7fc00000u, r);
-  return uintBitsToFloat(r);
+  Int c = X.e & 1;
+  Mask odd = c != 0;
+  Uint n = X.m << Uint(23 + c);  // low 32 bits of N = Mx 2^(23+c)
+  PRECISE Float nf = uintBitsToFloat((X.m & 0x007fffffu) | select(odd, 0x40000000u, 0x3f800000u));  // N 2^-46
+  PRECISE Float y = xmRsqrtApprox(nf);
+  PRECISE Float t = (nf * y) * 8388608.0f;  // ~ sqrt(N)
+  Uint r = Uint(Int(floor(t)));
+  Int rem = Int(n - r * r);
+  PRECISE Float est = (Float(rem) * y) * 5.9604644775390625e-08f;  // rem / (2 sqrt(N)): 2^-24 y
+  r = Uint(Int(r) + Int(floor(est)));
+  rem = Int(n - r * r);
+  Mask low = rem < 0;
+  rem = select(low, rem + Int(r << 1u) - 1, rem);
+  r = select(low, r - 1u, r);
+  Mask high = rem > Int(r << 1u);
+  rem = select(high, rem - Int(r << 1u) - 1, rem);
+  r = select(high, r + 1u, r);
+  Int E = (X.e - 46 - c) >> 1;
+  Uint res = (Uint(E + 149) << 23u) + r + select(rem > Int(r), 1u, 0u);
+  res = select(keep, ux, res);
+  res = select(nan, 0x7fc00000u, res);
+  return uintBitsToFloat(res);
+}
+
+Float exDiv(Float a, Float b) {
+  NativeResult fast = nativeDiv(a, b);  // C++ builds only: same bits where every lane is normal
+  if (fast.ok) return fast.value;
+  return exDivPortable(a, b);
+}
+
+Float exSqrt(Float x) {
+  NativeResult fast = nativeSqrt(x);
+  if (fast.ok) return fast.value;
+  return exSqrtPortable(x);
 }
 
 // 1/sqrt(x) as two correctly rounded steps (<= 1 ulp). -0 -> -inf, +0 -> +inf, +inf -> +0.
@@ -236,15 +306,6 @@ struct XmLogParts {
   Mask zero;    // x == 0 (or flushed)
   Mask inf;     // x == +inf
 };
-
-// 1/d for d in [1.5, 2.5] to ~1e-9 relative: bit-trick seed, three Newton steps (mul/add only).
-Float xmRcpApprox(Float d) {
-  PRECISE Float x = uintBitsToFloat(0x7ef311c3u - floatBitsToUint(d));
-  x = x * (2.0f - d * x);
-  x = x * (2.0f - d * x);
-  x = x * (2.0f - d * x);
-  return x;
-}
 
 // Derivation: ln m = 2 atanh t, t = (m-1)/(m+1). t = tHi + tLo with tHi = exDiv(m-1, m+1) and
 // tLo = (m - 1 - tHi (m+1)) / (m+1), the residual formed exactly (m+1 as a TwoSum, tHi times it by
