@@ -35,6 +35,10 @@ TEST(DeviceDesc, ShippedFilesLoadAndSayWhereTheyComeFrom) {
   const DeviceDesc h100 = loadDeviceDesc(shipped("h100")), h200 = loadDeviceDesc(shipped("h200"));
   EXPECT_FALSE(h100.verified);  // public figures until a GPU is measured
   EXPECT_TRUE(loadDeviceDesc(shipped("lavapipe")).verified);
+  // Measured by calibrate's spec-branch kernel (and by the shading pass: SwiftShader's time does not change when the
+  // pipeline's kSceneBrdfKinds is every kind instead of the scene's, lavapipe's quadruples; docs/RESULTS.md).
+  EXPECT_TRUE(loadDeviceDesc(shipped("lavapipe")).foldsSpecConstants);
+  EXPECT_FALSE(loadDeviceDesc(shipped("swiftshader")).foldsSpecConstants);
   EXPECT_EQ(h100.cores, 132);
   EXPECT_NEAR(h100.opsPerSecond[shadetwin::model::kFAdd], 132.0 * 128.0 * 1.98e9, 1e6);
   EXPECT_NEAR(h200.bandwidthBytesPerSecond / h100.bandwidthBytesPerSecond, 4.8 / 3.35, 1e-9);
@@ -81,6 +85,14 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
   }
   EXPECT_NE(errorOf(replaced("\"executes_every_block\": false", "\"executes_every_block\": 1")).find("'executes_every_block' must be true or false"),
             std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"folds_specialization_constants\": true", "\"folds_specialization_constants\": \"yes\""))
+                .find("'folds_specialization_constants' must be true or false"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"first_dispatch_seconds\": 0.0", "\"first_dispatch_seconds\": -1")).find("'first_dispatch_seconds' must be a number >= 0"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"workgroup_seconds\": 0.0", "\"workgroup_seconds\": null")).find("'workgroup_seconds' must be a number >= 0"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"uniform\"", "\"uniforms\"")).find("unknown key 'lookups_per_second.uniforms'"), std::string::npos);
   EXPECT_NE(errorOf(replaced("\"verified\": false", "\"verified\": 0")).find("'verified' must be true or false"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"dispatch_seconds\": 1e-05", "\"dispatch_seconds\": -1")).find("'dispatch_seconds' must be positive"),

@@ -11,7 +11,7 @@ DeviceDesc device(bool overlap) {
   DeviceDesc d;
   d.opsPerSecond.fill(1e9);
   d.opsPerSecond[kIAlu] = 2e9;
-  d.lookupsPerSecond = {4e8, 2e8, 1e8};
+  d.lookupsPerSecond = {4e8, 2e8, 1e8, 8e8};
   d.bandwidthBytesPerSecond = 1e10;
   d.dispatchSeconds = 1e-4;
   d.trianglesPerSecond = 1e7, d.fragmentsPerSecond = 1e9, d.attachmentBytesPerSecond = 1e10;
@@ -40,23 +40,34 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   c.ops[opcount::kIAlu] = 2e6;               // 1 ms at 2e9/s
   c.ops[opcount::kTexTrilinear] = 300000;    // 3 ms at 1e8/s
   c.ops[opcount::kTexNearest] = 400000;      // 1 ms at 4e8/s
+  c.ops[opcount::kTexUniform] = 800000;      // 1 ms at 8e8/s (texelFetchUniform, per lane)
   c.bytesRead = 10000000, c.bytesWritten = 5000000;  // 1.5 ms at 1e10 B/s
   const Prediction s = predict(c, device(false));
   EXPECT_DOUBLE_EQ(s.aluSeconds, 2e-3);
-  EXPECT_DOUBLE_EQ(s.textureSeconds, 4e-3);
+  EXPECT_DOUBLE_EQ(s.textureSeconds, 5e-3);
   EXPECT_DOUBLE_EQ(s.memorySeconds, 1.5e-3);
-  EXPECT_DOUBLE_EQ(s.seconds, 2e-3 + 4e-3 + 1.5e-3 + 1e-4);
+  EXPECT_DOUBLE_EQ(s.seconds, 2e-3 + 5e-3 + 1.5e-3 + 1e-4);
   EXPECT_EQ(s.bound, "texture");
   const Prediction g = predict(c, device(true));
-  EXPECT_DOUBLE_EQ(g.seconds, 4e-3 + 1e-4);
+  EXPECT_DOUBLE_EQ(g.seconds, 5e-3 + 1e-4);
   EXPECT_EQ(g.bound, "texture");
   PassCounts idle;  // nothing to do: the launch bounds it
   EXPECT_EQ(predict(idle, device(true)).bound, "launch");
   idle.dispatches = 12;  // a launch per dispatch (a MIP chain's levels, a draw per object)
   EXPECT_DOUBLE_EQ(predict(idle, device(false)).launchSeconds, 12e-4);
+  DeviceDesc jit = device(false);  // a pipeline's first dispatch, and a cost per workgroup of 64 invocations
+  jit.firstDispatchSeconds = 5e-4, jit.workgroupSeconds = 1e-6;
+  PassCounts input;
+  input.dispatches = 1, input.pipelines = 1, input.invocations = 6400;
+  EXPECT_DOUBLE_EQ(predict(input, jit).launchSeconds, 1e-4 + 5e-4 + 100 * 1e-6);
+  input.workgroups = 7;  // counted explicitly (a MIP chain: one set per level)
+  EXPECT_DOUBLE_EQ(predict(input, jit).launchSeconds, 1e-4 + 5e-4 + 7 * 1e-6);
   PassCounts raster;  // triangles, covered pixels and render-target bytes at the raster rates
   raster.dispatches = 1, raster.triangles = 20000, raster.fragments = 3000000, raster.attachmentBytes = 50000000;
-  const Prediction r = predict(raster, device(false));
+  raster.invocations = 640000;  // vertex and fragment lanes: no compute workgroups
+  DeviceDesc rd = device(false);
+  rd.workgroupSeconds = 1.0;
+  const Prediction r = predict(raster, rd);
   EXPECT_DOUBLE_EQ(r.rasterSeconds, 2e-3 + 3e-3 + 5e-3);
   EXPECT_EQ(r.bound, "raster");
 }

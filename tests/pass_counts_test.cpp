@@ -108,7 +108,40 @@ TEST(PassCounts, RasterAndComputeShapes) {
     if (p.pass == "shadow") {
       EXPECT_EQ(p.dispatches, scene.objects.size() * uint64_t(scene.visMaps));
     }
+    if (p.pass == "visibility-fit") {  // per map: its matrix and weights (5 rows) and its SH row (4), as uniform fetches
+      EXPECT_GT(p.ops[opcount::kTexUniform], 0.0);
+      EXPECT_LE(p.ops[opcount::kTexUniform], 9.0 * scene.visMaps * double(p.invocations));
+      EXPECT_EQ(p.ops[opcount::kTexNearest], scene.visMaps * double(p.invocations));  // the maps themselves
+    }
+    // The technique inputs' pipelines are made when the inputs are built: their first dispatch is in the pass.
+    if (p.pass == "paraboloid" || p.pass == "sh-project" || p.pass == "sh-reduce") EXPECT_EQ(p.pipelines, 1u) << p.pass;
+    if (p.pass == "mips") EXPECT_EQ(p.pipelines, 1u);  // bunny: the atlas's chain only (no material maps)
+    if (p.pass == "gbuffer" || p.pass == "shade" || p.pass == "visibility-fit") EXPECT_EQ(p.pipelines, 0u) << p.pass;
   }
+}
+
+
+// kSceneBrdfKinds compiles the absent BRDF kinds out on a device whose compiler specializes (lavapipe); SwiftShader
+// runs them under the constant as under a mask (folds_specialization_constants false, measured), so on a device that
+// runs every block their straight-line code counts; on a GPU that skips untaken blocks it never does. Bits unchanged.
+TEST(PassCounts, AbsentBrdfKindsCountOnlyWhereTheCompilerKeepsThem) {
+  const Scene scene = small({"bunny.json", "fis"});
+  std::ostringstream quiet;
+  const EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+  auto shadeOps = [&](bool everyBlock, bool folds) {
+    model::CoreModel core;
+    core.executeEveryBlock = everyBlock, core.foldsSpecConstants = folds;
+    const model::FrameCounts f = model::countFrame(scene, *env.texture, emu::swiftshaderProfile(), core);
+    EXPECT_EQ(f.identical, f.compared);
+    double ops = 0;
+    for (const model::PassCounts& p : f.passes)
+      if (p.pass == "shade")
+        for (int k = 0; k < opcount::kTexLookup; ++k) ops += p.ops[size_t(k)];
+    return ops;
+  };
+  const double folded = shadeOps(true, true), kept = shadeOps(true, false);
+  EXPECT_GT(kept, 1.2 * folded);  // four absent kinds' sampling code per sample
+  EXPECT_EQ(shadeOps(false, true), shadeOps(false, false));
 }
 
 }  // namespace

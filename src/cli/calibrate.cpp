@@ -29,7 +29,8 @@ struct Push {
 };
 static_assert(sizeof(Push) == 32, "calibrate.comp push constants");
 
-enum Kind : uint32_t { kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK, kBranchUnrolledK };
+enum Kind : uint32_t { kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK, kBranchUnrolledK,
+                     kSpecBranchK, kUniformFetchK };
 
 // The host's last-level cache (sysfs), for the description: line size and capacity.
 void hostCache(int& lineBytes, double& bytes) {
@@ -56,7 +57,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
-  std::unique_ptr<vk::Kernel> kernels[2][kBranchUnrolledK + 1];
+  std::unique_ptr<vk::Kernel> kernels[2][kUniformFetchK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
       const uint32_t spec[] = {kind, dependent};
@@ -115,7 +116,48 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   for (int r = 0; r < 15; ++r) empties.push_back(timeRun(e, nearest->handle(), 64));
   std::sort(empties.begin(), empties.end());
   const double dispatch = empties[empties.size() / 2];
-  // Iterations grow until a run takes `target` seconds; the rate is work / (time - dispatch).
+  double perGroup = 0.0;  // every rate below removes the workgroups' setup from its time
+  // Per workgroup of 64 invocations, while working: the same fadd work as 4096 workgroups of I iterations and as 64
+  // workgroups of 64 I iterations (a device's per-group setup, beyond what overlaps with work).
+  {
+    const uint32_t I = opts.quick ? 8u : 64u;
+    Push p{kFAddK, I, 0, 0, 1.0e-3f, 0.0f, 0.0f, 0.0f};
+    std::vector<double> many, few;
+    for (int r = 0; r < 5; ++r) {
+      p.iters = I;
+      many.push_back(timeRun(p, nearest->handle(), 64u * 4096u));
+      p.iters = 64u * I;
+      few.push_back(timeRun(p, nearest->handle(), 64u * 64u));
+    }
+    std::sort(many.begin(), many.end());
+    std::sort(few.begin(), few.end());
+    perGroup = std::max(many[2] - few[2], 0.0) / 4032.0;
+    log << "  workgroup " << perGroup * 1e9 << " ns per workgroup of 64 (the same work in 4096 workgroups vs 64: " << many[2] * 1e3
+        << " / " << few[2] * 1e3 << " ms)\n";
+  }
+  // A pipeline's first dispatch (the Vulkan build creates the technique inputs' pipelines each time it builds them):
+  // the empty kernel on a pipeline created just before, median of several, beyond a warm dispatch. lavapipe compiles
+  // a pipeline's machine code at its first dispatch.
+  double firstDispatch = 0.0;
+  {
+    const vk::Binding b[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, img.view(), nearest->handle()},
+                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, src.handle()},
+                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dst.handle()}};
+    std::vector<double> t;
+    for (int r = 0; r < 9; ++r) {
+      const uint32_t spec[] = {kEmptyK, 0};
+      vk::Kernel fresh(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout, sizeof(Push), std::span<const uint32_t>{}, spec);
+      Push q = e;
+      q.count = 64;
+      const auto t0 = std::chrono::steady_clock::now();
+      fresh.run(b, &q, 64);
+      t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(t.begin(), t.end());
+    firstDispatch = std::max(t[t.size() / 2] - dispatch, 0.0);
+    log << "  first dispatch of a new pipeline: " << firstDispatch * 1e6 << " us beyond a warm one\n";
+  }
+  // Iterations grow until a run takes `target` seconds; the rate is work / (time - dispatch - the workgroups' setup).
   auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod, uint32_t dependent = 0) {
     Push p{kind, 16, 0, dependent, c, lod, 0.0173f, 0.0f};
     double t = 0.0;
@@ -124,7 +166,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       if (t >= target || p.iters >= (1u << 24)) break;
       p.iters = uint32_t(std::min<double>(double(1u << 24), double(p.iters) * std::max(2.0, 1.2 * target / std::max(t, 1e-6))));
     }
-    return double(count) * double(p.iters) * workPerIter / std::max(t - dispatch, 1e-9);
+    return double(count) * double(p.iters) * workPerIter / std::max(t - dispatch - double(count / 64) * perGroup, 1e-9);
   };
   model::DeviceDesc d;
   const std::string name = ctx.deviceName();
@@ -176,12 +218,17 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   d.lookupsPerSecond[model::kNearest] = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
   d.lookupsPerSecond[model::kBilinear] = rate(kTexK, 1.0, bilinear->handle(), 1.0f, 0.0f);
   d.lookupsPerSecond[model::kTrilinear] = rate(kTexK, 1.0, trilinear->handle(), 1.0f, 1.5f);
+  d.lookupsPerSecond[model::kUniformFetch] = rate(kUniformFetchK, 1.0, nearest->handle(), 1.0f, 0.0f);
   {
     Push p{kCopyK, 1, 0, 0, 1.5f, 0.0f, 0.0f, 0.0f};
-    const double t = timeRun(p, nearest->handle(), uint32_t(copyVec4s / 16));
-    d.bandwidthBytesPerSecond = double(copyVec4s) * 32.0 / std::max(t - dispatch, 1e-9);
+    std::vector<double> t;  // the median of five (each a median of three): the copy is the noisiest rate on a shared host
+    for (int r = 0; r < 5; ++r) t.push_back(timeRun(p, nearest->handle(), uint32_t(copyVec4s / 16)));
+    std::sort(t.begin(), t.end());
+    d.bandwidthBytesPerSecond = double(copyVec4s) * 32.0 / std::max(t[2] - dispatch, 1e-9);
   }
   d.dispatchSeconds = dispatch;
+  d.firstDispatchSeconds = firstDispatch;
+  d.workgroupSeconds = perGroup;
   {  // Blocks no lane takes: the fadd kernel's steps behind a never-true per-lane `if`, inside and around the loop.
     Push p{kFAddK, opts.quick ? 1u << 10 : 1u << 13, 0, 0, 1.0e-3f, -1.0f, 0.0f, 0.0f};
     const double work = timeRun(p, nearest->handle(), count) - dispatch;
@@ -191,11 +238,22 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     const double loop = timeRun(p, nearest->handle(), count) - dispatch;
     p.kind = kBranchUnrolledK;
     const double unrolled = timeRun(p, nearest->handle(), count) - dispatch;
+    p.kind = kBranchK, p.lod = 1.0e30f;  // the same block taken by every lane
+    const double taken = timeRun(p, nearest->handle(), count) - dispatch;
+    p.lod = -1.0f;
     d.executesEveryBlock = straight > 0.5 * work;
+    // The same block behind a specialization constant that is false (DEPENDENT = true): a compiler that specializes
+    // removes it (and the loop, then empty); one that does not runs it under the constant as under a mask.
+    p.kind = kSpecBranchK, p.pad = 1;
+    const double spec = timeRun(p, nearest->handle(), count) - dispatch;
+    d.foldsSpecConstants = spec < 0.5 * work;
     log << "  branch    an untaken block costs " << std::setprecision(3) << 100.0 * straight / std::max(work, 1e-12)
         << "% of its work, an untaken loop " << 100.0 * loop / std::max(work, 1e-12) << "%, an untaken 4-iteration loop "
         << 100.0 * unrolled / std::max(work, 1e-12) << "%: "
-        << (d.executesEveryBlock ? "every block runs under its mask" : "untaken blocks are skipped") << "\n";
+        << (d.executesEveryBlock ? "every block runs under its mask" : "untaken blocks are skipped") << "; a block behind a false "
+        << "specialization constant in a loop " << 100.0 * spec / std::max(work, 1e-12) << "%: "
+        << (d.foldsSpecConstants ? "compiled out" : "runs") << "; the block taken by every lane "
+        << 100.0 * taken / std::max(work, 1e-12) << "%\n";
   }
   {  // Raster rates from synthetic depth-only draws through the shadow pipeline (generated geometry, not a scene):
      // two zero-area triangles (nothing covered: the targets' clear and copy-out alone), many tiny triangles into small maps

@@ -56,6 +56,8 @@ inline bool anyLane(bool m) { return m; }
 // The dialect's IF_ANY and FOR hooks (shade/prelude.h): nothing for the scalar and emulator builds.
 inline bool ifAnyScope(bool m) { return m; }
 inline int loopScope(float) { return 0; }
+inline bool specConstantMask(float, bool b) { return b; }
+inline void countUniformFetches(float) {}
 inline uint32_t floatBitsToUint(float x) { return __builtin_bit_cast(uint32_t, x); }
 inline int32_t floatBitsToInt(float x) { return __builtin_bit_cast(int32_t, x); }
 inline float uintBitsToFloat(uint32_t x) { return __builtin_bit_cast(float, x); }

@@ -43,8 +43,9 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   }
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
-                "dispatch_seconds", "triangles_per_second", "fragments_per_second", "attachment_bytes_per_second",
-                "units_overlap", "latency_seconds", "window_ops", "executes_every_block"},
+                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "triangles_per_second", "fragments_per_second", "attachment_bytes_per_second",
+                "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
+                "folds_specialization_constants"},
             path, "");
   DeviceDesc d;
   for (const char* k : {"device", "name", "provenance"})
@@ -54,6 +55,9 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   d.unitsOverlap = j.at("units_overlap").get<bool>();
   if (!j.at("executes_every_block").is_boolean()) fail(path, "'executes_every_block' must be true or false");
   d.executesEveryBlock = j.at("executes_every_block").get<bool>();
+  if (!j.at("folds_specialization_constants").is_boolean())
+    fail(path, "'folds_specialization_constants' must be true or false");
+  d.foldsSpecConstants = j.at("folds_specialization_constants").get<bool>();
   d.device = j.at("device").get<std::string>();
   d.name = j.at("name").get<std::string>();
   d.provenance = j.at("provenance").get<std::string>();
@@ -76,6 +80,12 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   d.cacheBytes = positive(j, "cache_bytes", path, "");
   d.bandwidthBytesPerSecond = positive(j, "bandwidth_bytes_per_second", path, "");
   d.dispatchSeconds = positive(j, "dispatch_seconds", path, "");
+  if (!j.at("first_dispatch_seconds").is_number() || !(j.at("first_dispatch_seconds").get<double>() >= 0.0))
+    fail(path, "'first_dispatch_seconds' must be a number >= 0");
+  d.firstDispatchSeconds = j.at("first_dispatch_seconds").get<double>();
+  if (!j.at("workgroup_seconds").is_number() || !(j.at("workgroup_seconds").get<double>() >= 0.0))
+    fail(path, "'workgroup_seconds' must be a number >= 0");
+  d.workgroupSeconds = j.at("workgroup_seconds").get<double>();
   d.trianglesPerSecond = positive(j, "triangles_per_second", path, "");
   d.fragmentsPerSecond = positive(j, "fragments_per_second", path, "");
   d.attachmentBytesPerSecond = positive(j, "attachment_bytes_per_second", path, "");
@@ -109,13 +119,16 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"cache_bytes", d.cacheBytes},
             {"bandwidth_bytes_per_second", d.bandwidthBytesPerSecond},
             {"dispatch_seconds", d.dispatchSeconds},
+            {"first_dispatch_seconds", d.firstDispatchSeconds},
+            {"workgroup_seconds", d.workgroupSeconds},
             {"triangles_per_second", d.trianglesPerSecond},
             {"fragments_per_second", d.fragmentsPerSecond},
             {"attachment_bytes_per_second", d.attachmentBytesPerSecond},
             {"units_overlap", d.unitsOverlap},
             {"latency_seconds", latency},
             {"window_ops", d.windowOps},
-            {"executes_every_block", d.executesEveryBlock}};
+            {"executes_every_block", d.executesEveryBlock},
+            {"folds_specialization_constants", d.foldsSpecConstants}};
   return j.dump(2) + "\n";
 }
 

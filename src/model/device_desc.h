@@ -12,8 +12,10 @@ namespace shadetwin::model {
 enum OpClass { kFAdd, kFMul, kIAlu, kIMul, kCvt, kSelect, kFCmp, kOpClasses };
 inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd", "fmul", "ialu", "imul", "cvt", "select", "fcmp"};
 /// Texture filters the model distinguishes (RGBA32F lookups).
-enum TexFilter { kNearest, kBilinear, kTrilinear, kTexFilters };
-inline constexpr const char* kTexFilterNames[kTexFilters] = {"nearest", "bilinear", "trilinear"};
+// uniform: a texelFetch at coordinates every lane of the invocation group shares (shade/prelude.h texelFetchUniform),
+// per lane.
+enum TexFilter { kNearest, kBilinear, kTrilinear, kUniformFetch, kTexFilters };
+inline constexpr const char* kTexFilterNames[kTexFilters] = {"nearest", "bilinear", "trilinear", "uniform"};
 
 struct DeviceDesc {
   std::string device;      // the --device name: lavapipe, swiftshader, h100, h200
@@ -29,6 +31,12 @@ struct DeviceDesc {
   double cacheBytes = 0.0;      // the last level shared by all cores (CPU L2/L3 per machine, GPU L2)
   double bandwidthBytesPerSecond = 0.0;  // read + write of a large buffer
   double dispatchSeconds = 0.0;          // an empty compute dispatch, submit to completion
+  // A pipeline's first dispatch beyond a warm one (lavapipe compiles its machine code then): calibrate's empty kernel on
+  // a pipeline created just before. Charged once per pipeline a pass creates (the technique inputs).
+  double firstDispatchSeconds = 0.0;
+  // Per compute workgroup (64 invocations) beyond the work itself: calibrate's empty kernel over 4096 workgroups against
+  // one (SwiftShader sets up each workgroup's invocations as coroutines: ~12 us; lavapipe ~0.1 us).
+  double workgroupSeconds = 0.0;
   // Fixed-function rasterization: triangles (set-up, clipping, binning) and covered pixels (coverage, depth test and
   // write) per second; the fragment shader's own operations are counted with the ALU classes.
   double trianglesPerSecond = 0.0, fragmentsPerSecond = 0.0;
@@ -45,6 +53,10 @@ struct DeviceDesc {
   // lane is active (lavapipe, SwiftShader: their shader compilers never branch around a block), or skips a block no
   // lane of a vector takes (GPUs). Software devices: calibrate's branch kernels measure it.
   bool executesEveryBlock = false;
+  // Whether the shader compiler removes a block behind a specialization constant that is false (lavapipe, GPUs) or
+  // runs it like any other block, under the constant as a mask (SwiftShader, inside loops): the scene's absent BRDF
+  // kinds (kSceneBrdfKinds) then cost their straight-line code. Software devices: calibrate's spec-branch kernel.
+  bool foldsSpecConstants = true;
 };
 
 /// Parses a description; throws std::runtime_error naming `path` and the key for a missing or unknown key,

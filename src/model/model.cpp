@@ -36,6 +36,7 @@ CoreModel coreModel(const DeviceDesc& d) {
   CoreModel m;
   m.on = !d.unitsOverlap;
   m.executeEveryBlock = d.executesEveryBlock;
+  m.foldsSpecConstants = d.foldsSpecConstants;
   for (int k = 0; k < opcount::kTexLookup; ++k) {
     const OpClass c = classOf(opcount::Kind(k));
     m.interval[size_t(k)] = 8.0 * double(d.cores) / d.opsPerSecond[size_t(c)];  // one 8-lane operation on one core
@@ -53,11 +54,14 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   if (!d.unitsOverlap && c.scheduledSeconds > 0) p.aluSeconds = std::max(p.aluSeconds, c.scheduledSeconds / double(d.cores));
   p.textureSeconds = c.ops[opcount::kTexNearest] / d.lookupsPerSecond[kNearest] +
                      c.ops[opcount::kTexBilinear] / d.lookupsPerSecond[kBilinear] +
-                     c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear];
+                     c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear] +
+                     c.ops[opcount::kTexUniform] / d.lookupsPerSecond[kUniformFetch];
   p.memorySeconds = double(c.bytesRead + c.bytesWritten) / d.bandwidthBytesPerSecond;
   p.rasterSeconds = double(c.triangles) / d.trianglesPerSecond + double(c.fragments) / d.fragmentsPerSecond +
                     double(c.attachmentBytes) / d.attachmentBytesPerSecond;
-  p.launchSeconds = double(std::max<uint64_t>(c.dispatches, 1)) * d.dispatchSeconds;
+  const uint64_t groups = c.triangles ? 0 : c.workgroups ? c.workgroups : (c.invocations + 63) / 64;
+  p.launchSeconds = double(std::max<uint64_t>(c.dispatches, 1)) * d.dispatchSeconds + double(c.pipelines) * d.firstDispatchSeconds +
+                    double(groups) * d.workgroupSeconds;
   const double terms[5] = {p.aluSeconds, p.textureSeconds, p.memorySeconds, p.rasterSeconds, p.launchSeconds};
   const char* names[5] = {"alu", "texture", "memory", "raster", "launch"};
   const int top = int(std::max_element(terms, terms + 5) - terms);

@@ -19,9 +19,10 @@
 
 namespace opcount {
 
-enum Kind { kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kKinds };
+enum Kind { kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear,
+           kTexUniform, kKinds };
 inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "tex_lookup", "texel",
-                                          "tex_nearest", "tex_bilinear", "tex_trilinear"};
+                                          "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
 inline void tick(Kind k, uint64_t n = 1) { counts[size_t(k)] += n; }
 
@@ -65,6 +66,10 @@ inline thread_local bool executeEveryBlock = false;
 // The pipeline's kSceneBrdfKinds specialization constant (shade/prelude.h) for the counting build (model/counted.h):
 // the BRDF kinds the scene's materials use; the others are compiled out on the GPU. Set per counted run.
 inline thread_local uint32_t sceneBrdfKinds = 0xffffffffu;
+// Whether the device's compiler removes a block behind a false specialization constant (DeviceDesc
+// folds_specialization_constants): true, specConstantMask marks such a mask `never` (the block is not counted);
+// false, it is an ordinary mask and the block counts as any untaken block does. Set per counted run.
+inline thread_local bool foldsSpecConstants = true;
 inline thread_local int loopDepth = 0;
 inline thread_local int deadBase = -1;  // loop depth where the outermost untaken block began; -1: in none
 inline bool counting() { return deadBase < 0 || loopDepth <= deadBase; }
@@ -190,6 +195,8 @@ struct F {
 };
 
 template <int N> inline LoopScope loopScope(F<N>) { return {}; }
+// The dialect's specMask (shade/prelude.h): a uniform mask from a specialization constant.
+template <int N> inline M<N> specConstantMask(F<N>, bool b) { return M<N>(emu::Mask<N>(b), 0, !b && foldsSpecConstants); }
 
 template <int N> U<N>::U(I<N> a) : x(emu::U32<N>(a.x)), t(a.t) {}
 template <int N> U<N>::U(F<N> a) : x(emu::U32<N>(a.x)), t(op(kCvt, a.t)) {}
@@ -210,6 +217,12 @@ inline void countFetches(int n) {
   tick(kTexLookup, uint64_t(n));
   tick(kTexel, uint64_t(n));
   tick(kTexNearest, uint64_t(n));
+}
+
+/// The dialect's texelFetchUniform: one texel at coordinates every lane shares, fetched per lane by a software device
+/// (its rate is calibrate's uniform-fetch kernel), once per warp by a GPU. Counted per lane.
+template <int N> inline void countUniformFetches(F<N>) {
+  if (counting()) tick(kTexUniform, uint64_t(N));
 }
 
 /// Texels a linear-filtered lookup at `lod` reads on a texture of `levels` levels: 4 per level, two

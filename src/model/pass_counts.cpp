@@ -48,9 +48,11 @@ std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float
                                           const CoreModel& core) {
   std::vector<std::vector<float>> chain;
   addTicks(c, countedTicks([&] { chain = mipChainCpu(level0, w, h, layers, 0); }, core, &c.scheduledSeconds), 8);
+  ++c.pipelines;  // the Vulkan build makes the chain's pipeline per chain (passes/mips.cpp)
   for (size_t l = 1; l < chain.size(); ++l) {
     const uint32_t dw = std::max(1u, w >> l), dh = std::max(1u, h >> l);
     c.invocations += uint64_t((dw + 7) / 8 * 8) * dh * layers;
+    c.workgroups += (uint64_t(dw) * dh * layers + 63) / 64;  // passes/mips.cpp: one invocation per texel of the level
     c.bytesWritten += chain[l].size() * 4;
     c.bytesRead += chain[l - 1].size() * 4;
     ++c.dispatches;
@@ -61,7 +63,8 @@ std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float
 // Adds another run of the same pass (the material maps' MIP chain after the atlas's).
 void accumulate(PassCounts& into, const PassCounts& c) {
   for (int k = 0; k < opcount::kKinds; ++k) into.ops[size_t(k)] += c.ops[size_t(k)];
-  into.invocations += c.invocations, into.dispatches += c.dispatches;
+  into.invocations += c.invocations, into.dispatches += c.dispatches, into.pipelines += c.pipelines;
+  into.workgroups += c.workgroups;
   into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.scheduledSeconds += c.scheduledSeconds;
 }
 
@@ -73,6 +76,7 @@ std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& 
   one.execute([&] {
     opcount::counts = {};
     opcount::executeEveryBlock = core.executeEveryBlock;
+    opcount::foldsSpecConstants = core.foldsSpecConstants;
     opcount::Scheduler& s = opcount::sched;
     s.on = core.on;
     if (core.on) {
@@ -82,6 +86,7 @@ std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& 
     f();
     s.on = false;
     opcount::executeEveryBlock = false;
+    opcount::foldsSpecConstants = true;
     if (scheduledSeconds) *scheduledSeconds = core.on ? s.lastRetire : 0.0;
     for (int k = 0; k < opcount::kKinds; ++k) t[size_t(k)] = opcount::counts[size_t(k)];
   });
@@ -123,6 +128,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
   if (in.atlas) {
     PassCounts pa;
     pa.pass = "paraboloid";
+    pa.pipelines = 1;  // the Vulkan build makes each input's pipeline when it builds the input
     std::vector<float> atlas;
     addTicks(pa, countedTicks([&] { atlas = paraboloidAtlasCounted(env, dev, scene.fisFaceSize); }, core, &pa.scheduledSeconds), 8);
     const size_t n = 2 * size_t(scene.fisFaceSize) * scene.fisFaceSize;
@@ -138,6 +144,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
 
     PassCounts pr, rd;
     pr.pass = "sh-project", rd.pass = "sh-reduce";
+    pr.pipelines = rd.pipelines = 1;
     std::array<uint64_t, opcount::kKinds> project{};
     ShIrradiance sh;
     double projectSeconds = 0;
@@ -163,6 +170,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
   if (in.glints) {
     PassCounts gl;
     gl.pass = "glint-lighting";
+    gl.pipelines = 1;
     GlintLightingTable t;
     addTicks(gl, countedTicks([&] { t = glintLightingCounted(env, dev, in.glints->lightingSpec); }, core, &gl.scheduledSeconds), 8);
     const GlintLightingTable e = glintLightingEmu(env, dev, in.glints->lightingSpec);

@@ -25,6 +25,8 @@ struct PassCounts {
   std::array<double, opcount::kKinds> ops{};
   uint64_t invocations = 0;   // compute: invocations incl. the tail; raster: vertex invocations + fragment lanes
   uint64_t dispatches = 0;    // dispatches or draws
+  uint64_t pipelines = 0;     // pipelines created for the pass and first dispatched in it (the technique inputs)
+  uint64_t workgroups = 0;    // compute workgroups dispatched (0: one per 64 invocations; raster passes have none)
   uint64_t bytesRead = 0, bytesWritten = 0;  // buffer traffic (texture reads are in the lookups)
   uint64_t attachmentBytes = 0;  // raster passes: render-target bytes cleared and copied out
   uint64_t triangles = 0, fragments = 0, helperLanes = 0;  // raster passes: triangles in, covered pixels, quad helpers
@@ -37,6 +39,7 @@ struct PassCounts {
 /// one counted 8-lane operation on one core, and the window; off: counting only.
 struct CoreModel {
   bool executeEveryBlock = false;  // opcount::executeEveryBlock (software devices), also without the schedule
+  bool foldsSpecConstants = true;  // opcount::foldsSpecConstants
   bool on = false;
   std::array<double, opcount::kKinds> latency{}, interval{};
   uint32_t window = 256;

@@ -286,7 +286,7 @@ BrdfSample sampleLafortune(BrdfParams p, Float3 wo, Float2 u) {
 
 // ---- dispatch on the per-lane kind (IF_ANY skips kinds no lane has; on the GPU a kind absent from
 // the scene, kSceneBrdfKinds, is compiled out) ----
-Mask brdfKindIs(Uint kind, uint k) { return kind == k && Mask((kSceneBrdfKinds & (1u << k)) != 0u); }
+Mask brdfKindIs(Uint kind, uint k) { return kind == k && specMask((kSceneBrdfKinds & (1u << k)) != 0u); }
 
 BrdfSample sampleBrdf(BrdfParams p, Float3 wo, Float2 u) {
   BrdfSample r = BrdfSample(Float3(0.0f, 0.0f, 1.0f), 0.0f, 0.0f);

@@ -50,6 +50,8 @@ layout(constant_id = 0) const uint kSceneBrdfKinds = 0xffffffffu;
 // capacity every setting fits).
 #define SPEC_INT(name, id, value) layout(constant_id = id) const int name = value;
 
+// specMask(b): a mask from a specialization constant (the same for every lane, fixed when the pipeline is built).
+bool specMask(bool b) { return b; }
 // select(m, a, b): a where m is true, else b. GLSL mix() with a bool selector picks without arithmetic.
 float select(bool m, float a, float b) { return mix(b, a, m); }
 vec2 select(bool m, vec2 a, vec2 b) { return mix(b, a, bvec2(m)); }
@@ -122,6 +124,9 @@ vec3 st_cross(vec3 a, vec3 b) {
 #define IF_ANY(m) if ([[maybe_unused]] auto if_any_scope_ = ifAnyScope(m); if_any_scope_)
 #define FOR if ([[maybe_unused]] auto loop_scope_ = loopScope(Float()); true) for
 #define SPEC_INT(name, id, value) const int name = value;
+// specMask(b): a mask from a specialization constant; the counting build marks a false one compiled out on devices
+// whose compilers specialize (model/op_count.h specConstantMask).
+inline Mask specMask(bool b) { return specConstantMask(Float(), b); }
 
 using Float2 = ::shadetwin::shade::V2<Float>;
 using Float3 = ::shadetwin::shade::V3<Float>;
@@ -144,8 +149,10 @@ using Sampler2DArray = ::shadetwin::shade::Sampler2D;  // the emulated texture h
 inline Float4 textureLodLayer(const Sampler2DArray& s, Float2 uv, Float layer, Float lod) {
   return ::shadetwin::shade::textureLodLanes(s, uv.x, uv.y, lod, layer);
 }
-// One load broadcast to every lane (a GPU's uniform fetch; the emulator loads once, not per lane).
+// One load broadcast to every lane (a GPU's uniform fetch; the emulator loads once, not per lane; the counting build
+// counts it: countUniformFetches).
 inline Float4 texelFetchUniform(const Sampler2D& s, int x, int y, int level) {
+  countUniformFetches(Float());
   const ::shadetwin::shade::V4<float> t = ::shadetwin::shade::texelFetchLanes(s, int32_t(x), int32_t(y), level);
   return Float4(Float(t.x), Float(t.y), Float(t.z), Float(t.w));
 }

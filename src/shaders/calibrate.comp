@@ -90,6 +90,8 @@ void main() {
       acc += textureLod(tex, p, pc.lod);
       p = fract(p + vec2(pc.step, pc.step * 0.5));
     }
+  } else if (KIND == 14u) {  // texelFetch at coordinates every lane shares (a table row: shade/prelude.h texelFetchUniform)
+    for (uint n = 0u; n < pc.iters; ++n) acc += texelFetch(tex, ivec2(int(n & 7u), int((n >> 3u) & 7u)), 0);
   } else if (KIND == 9u) {  // window: independent iterations, each one dependent chain of 64 fadds
     for (uint n = 0u; n < pc.iters; ++n) {
       float y = x0 + float(n);
@@ -105,6 +107,10 @@ void main() {
       if (x0 < pc.lod) {
         for (int r = 0; r < 4; r++) { ALL8(FADD) }
       }
+    }
+  } else if (KIND == 13u) {  // a block behind a specialization constant inside a loop: DEPENDENT = true removes it
+    for (uint n = 0u; n < pc.iters; ++n) {
+      if (!DEPENDENT) { STEPS_INDEP(FADD) }
     }
   } else if (KIND == 11u) {
     if (x0 < pc.lod) {
