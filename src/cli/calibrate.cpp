@@ -29,8 +29,10 @@ struct Push {
 };
 static_assert(sizeof(Push) == 32, "calibrate.comp push constants");
 
-enum Kind : uint32_t { kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK, kBranchUnrolledK,
-                     kSpecBranchK, kUniformFetchK };
+enum Kind : uint32_t {
+  kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK,
+  kBranchUnrolledK, kSpecBranchK, kUniformFetchK
+};
 
 // The host's last-level cache (sysfs), for the description: line size and capacity.
 void hostCache(int& lineBytes, double& bytes) {
@@ -95,17 +97,19 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   const uint32_t count = opts.quick ? 16384u : 131072u;
   const double target = opts.quick ? 0.02 : 0.25;  // seconds per timed run
 
-  auto timeRun = [&](Push p, VkSampler s, uint32_t n) {
+  // One dispatch of `k` over n invocations, submit to completion, in seconds.
+  auto runOnce = [&](vk::Kernel& k, Push p, VkSampler s, uint32_t n) {
     const vk::Binding b[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, img.view(), s},
                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, src.handle()},
                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dst.handle()}};
     p.count = n;
+    const auto t0 = std::chrono::steady_clock::now();
+    k.run(b, &p, n);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  auto timeRun = [&](Push p, VkSampler s, uint32_t n) {
     std::vector<double> t;
-    for (int r = 0; r < 4; ++r) {  // run 0 warms up (pipeline, caches), then the median of three
-      const auto t0 = std::chrono::steady_clock::now();
-      kernel(p.kind, p.pad).run(b, &p, n);
-      t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
+    for (int r = 0; r < 4; ++r) t.push_back(runOnce(kernel(p.kind, p.pad), p, s, n));  // run 0 warms up, then the median of 3
     t.erase(t.begin());
     std::sort(t.begin(), t.end());
     return t[1];
@@ -132,26 +136,19 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     std::sort(many.begin(), many.end());
     std::sort(few.begin(), few.end());
     perGroup = std::max(many[2] - few[2], 0.0) / 4032.0;
-    log << "  workgroup " << perGroup * 1e9 << " ns per workgroup of 64 (the same work in 4096 workgroups vs 64: " << many[2] * 1e3
-        << " / " << few[2] * 1e3 << " ms)\n";
+    log << "  workgroup " << perGroup * 1e9 << " ns per workgroup of 64 (the same work in 4096 workgroups vs 64: "
+        << many[2] * 1e3 << " / " << few[2] * 1e3 << " ms)\n";
   }
   // A pipeline's first dispatch (the Vulkan build creates the technique inputs' pipelines each time it builds them):
   // the empty kernel on a pipeline created just before, median of several, beyond a warm dispatch. lavapipe compiles
   // a pipeline's machine code at its first dispatch.
   double firstDispatch = 0.0;
   {
-    const vk::Binding b[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, img.view(), nearest->handle()},
-                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, src.handle()},
-                             {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dst.handle()}};
     std::vector<double> t;
     for (int r = 0; r < 9; ++r) {
       const uint32_t spec[] = {kEmptyK, 0};
       vk::Kernel fresh(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout, sizeof(Push), std::span<const uint32_t>{}, spec);
-      Push q = e;
-      q.count = 64;
-      const auto t0 = std::chrono::steady_clock::now();
-      fresh.run(b, &q, 64);
-      t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      t.push_back(runOnce(fresh, e, nearest->handle(), 64));
     }
     std::sort(t.begin(), t.end());
     firstDispatch = std::max(t[t.size() / 2] - dispatch, 0.0);

@@ -144,7 +144,8 @@ std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, co
     log << "\n" << std::setprecision(1) << "      per invocation:";
     for (int k = 0; k < model::kOpClasses; ++k) log << " " << model::kOpClassNames[k] << " " << ops[size_t(k)] / inv;
     log << "; lookups nearest " << c.ops[opcount::kTexNearest] / inv << " bilinear " << c.ops[opcount::kTexBilinear] / inv
-        << " trilinear " << c.ops[opcount::kTexTrilinear] / inv << " uniform " << c.ops[opcount::kTexUniform] / inv << "; " << c.invocations << " invocations, " << c.dispatches
+        << " trilinear " << c.ops[opcount::kTexTrilinear] / inv << " uniform " << c.ops[opcount::kTexUniform] / inv << "; "
+        << c.invocations << " invocations, " << c.dispatches
         << (c.triangles ? " draws" : " dispatches");
     if (c.triangles) log << ", " << c.triangles << " triangles, " << c.fragments << " fragments, " << c.helperLanes << " helper lanes";
     log << "\n";

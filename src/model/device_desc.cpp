@@ -43,8 +43,8 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   }
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
-                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "triangles_per_second", "fragments_per_second", "attachment_bytes_per_second",
-                "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
+                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "triangles_per_second",
+                "fragments_per_second", "attachment_bytes_per_second", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
                 "folds_specialization_constants"},
             path, "");
   DeviceDesc d;

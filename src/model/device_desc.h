@@ -32,10 +32,10 @@ struct DeviceDesc {
   double bandwidthBytesPerSecond = 0.0;  // read + write of a large buffer
   double dispatchSeconds = 0.0;          // an empty compute dispatch, submit to completion
   // A pipeline's first dispatch beyond a warm one (lavapipe compiles its machine code then): calibrate's empty kernel on
-  // a pipeline created just before. Charged once per pipeline a pass creates (the technique inputs).
+  // a pipeline created just before, median of 9. Charged once per pipeline a pass creates (the technique inputs).
   double firstDispatchSeconds = 0.0;
-  // Per compute workgroup (64 invocations) beyond the work itself: calibrate's empty kernel over 4096 workgroups against
-  // one (SwiftShader sets up each workgroup's invocations as coroutines: ~12 us; lavapipe ~0.1 us).
+  // Per compute workgroup (64 invocations) beyond the work itself: calibrate's same fadd work in 4096 workgroups against
+  // 64 (SwiftShader sets up each workgroup's invocations as coroutines: ~15 us; lavapipe ~0.1-0.5 us).
   double workgroupSeconds = 0.0;
   // Fixed-function rasterization: triangles (set-up, clipping, binning) and covered pixels (coverage, depth test and
   // write) per second; the fragment shader's own operations are counted with the ALU classes.

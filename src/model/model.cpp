@@ -60,8 +60,8 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   p.rasterSeconds = double(c.triangles) / d.trianglesPerSecond + double(c.fragments) / d.fragmentsPerSecond +
                     double(c.attachmentBytes) / d.attachmentBytesPerSecond;
   const uint64_t groups = c.triangles ? 0 : c.workgroups ? c.workgroups : (c.invocations + 63) / 64;
-  p.launchSeconds = double(std::max<uint64_t>(c.dispatches, 1)) * d.dispatchSeconds + double(c.pipelines) * d.firstDispatchSeconds +
-                    double(groups) * d.workgroupSeconds;
+  p.launchSeconds = double(std::max<uint64_t>(c.dispatches, 1)) * d.dispatchSeconds +
+                    double(c.pipelines) * d.firstDispatchSeconds + double(groups) * d.workgroupSeconds;
   const double terms[5] = {p.aluSeconds, p.textureSeconds, p.memorySeconds, p.rasterSeconds, p.launchSeconds};
   const char* names[5] = {"alu", "texture", "memory", "raster", "launch"};
   const int top = int(std::max_element(terms, terms + 5) - terms);

@@ -19,8 +19,10 @@
 
 namespace opcount {
 
-enum Kind { kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear,
-           kTexUniform, kKinds };
+enum Kind {
+  kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp,
+  kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kKinds
+};
 inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "tex_lookup", "texel",
                                           "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
@@ -196,7 +198,9 @@ struct F {
 
 template <int N> inline LoopScope loopScope(F<N>) { return {}; }
 // The dialect's specMask (shade/prelude.h): a uniform mask from a specialization constant.
-template <int N> inline M<N> specConstantMask(F<N>, bool b) { return M<N>(emu::Mask<N>(b), 0, !b && foldsSpecConstants); }
+template <int N> inline M<N> specConstantMask(F<N>, bool b) {
+  return M<N>(emu::Mask<N>(b), 0, !b && foldsSpecConstants);
+}
 
 template <int N> U<N>::U(I<N> a) : x(emu::U32<N>(a.x)), t(a.t) {}
 template <int N> U<N>::U(F<N> a) : x(emu::U32<N>(a.x)), t(op(kCvt, a.t)) {}

@@ -7,9 +7,9 @@
 // docs/DESIGN.md ("Exact math").
 //
 // Denormals: exDiv and exSqrt work on integer significands (their float estimates stay normal) and
-// honour denormal inputs and outputs in every stage. The polynomial functions use float add/mul, so in a stage whose device profile flushes
-// denormals (lavapipe fragment) they flush exactly as the device's own float ops do; the emulator runs
-// such a stage with FTZ/DAZ set, which gives the same bits.
+// honour denormal inputs and outputs in every stage. The polynomial functions use float add/mul, so in
+// a stage whose device profile flushes denormals (lavapipe fragment) they flush exactly as the device's
+// own float ops do; the emulator runs such a stage with FTZ/DAZ set, which gives the same bits.
 
 // ---------------------------------------------------------------------------------------------
 // Integer core shared by exDiv and exSqrt.
@@ -77,9 +77,8 @@ Uint xmRoundPack(Uint sign, Uint sig, Int e2, Mask sticky) {
 // Derivation (square root). x = Mx 2^(e-23); with c = e & 1 let N = Mx 2^(23+c) in [2^46, 2^48), so
 // sqrt(x) = sqrt(N) 2^E with E = (e - 46 - c)/2 and r = floor(sqrt(N)) in [2^23, 2^24). Estimate from
 // an inverse-square-root seed and three Newton steps on n = N 2^-46 in [1, 4) (relative error below
-// 2^-22.5, so within 4 of the root;
-// measured over every input class: -3..+4); the exact residual rem = N - r^2 (|rem| < 2^28: again exact
-// in wrapping 32-bit arithmetic), one refinement
+// 2^-22.5, so within 4 of the root; measured over every input class: -3..+4); the exact residual
+// rem = N - r^2 (|rem| < 2^28: again exact in wrapping 32-bit arithmetic), one refinement
 // floor(rem / 2 sqrt(N)) and one correction each way give rem in [0, 2r]. sqrt(N) >= r + 1/2 iff
 // rem > r (integers; sqrt(N) = r + 1/2 is impossible, so there are no ties), and a square root of a
 // float is always a normal float, so the result's bits are ((E + 149) << 23) + r + [rem > r]: the
