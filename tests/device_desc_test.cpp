@@ -59,9 +59,11 @@ TEST(DeviceDesc, RoundTripIsLossless) {
   EXPECT_EQ(e.opsPerSecond, d.opsPerSecond);
   EXPECT_EQ(e.lookupsPerSecond, d.lookupsPerSecond);
   EXPECT_EQ(e.dispatchSeconds, d.dispatchSeconds);
-  EXPECT_EQ(e.trianglesPerSecond, d.trianglesPerSecond);
-  EXPECT_EQ(e.fragmentsPerSecond, d.fragmentsPerSecond);
-  EXPECT_EQ(e.attachmentBytesPerSecond, d.attachmentBytesPerSecond);
+  for (int r = 0; r < shadetwin::model::kRasterPipelines; ++r) {
+    EXPECT_EQ(e.raster[size_t(r)].trianglesPerSecond, d.raster[size_t(r)].trianglesPerSecond);
+    EXPECT_EQ(e.raster[size_t(r)].fragmentsPerSecond, d.raster[size_t(r)].fragmentsPerSecond);
+    EXPECT_EQ(e.raster[size_t(r)].targetBytesPerSecond, d.raster[size_t(r)].targetBytesPerSecond);
+  }
   std::remove(path.c_str());
 }
 

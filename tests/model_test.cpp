@@ -14,7 +14,8 @@ DeviceDesc device(bool overlap) {
   d.lookupsPerSecond = {4e8, 2e8, 1e8, 8e8};
   d.bandwidthBytesPerSecond = 1e10;
   d.dispatchSeconds = 1e-4;
-  d.trianglesPerSecond = 1e7, d.fragmentsPerSecond = 1e9, d.attachmentBytesPerSecond = 1e10;
+  d.raster[kDepthOnly] = {1e7, 1e9, 1e10};
+  d.raster[kGbufferRaster] = {5e6, 1e8, 2e9};
   d.unitsOverlap = overlap;
   return d;
 }
@@ -70,6 +71,8 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   const Prediction r = predict(raster, rd);
   EXPECT_DOUBLE_EQ(r.rasterSeconds, 2e-3 + 3e-3 + 5e-3);
   EXPECT_EQ(r.bound, "raster");
+  raster.rasterPipeline = kGbufferRaster;  // the G-buffer's pipeline at its own rates
+  EXPECT_DOUBLE_EQ(predict(raster, rd).rasterSeconds, 4e-3 + 3e-2 + 2.5e-2);
 }
 
 }  // namespace

@@ -14,8 +14,10 @@
 
 #include "emu/device_profile.h"
 #include "passes/passes_vk.h"
+#include "passes/gbuffer.h"
 #include "passes/shadow.h"
 #include "scene/scene.h"
+#include "util/timer.h"
 #include "vk/context.h"
 
 namespace shadetwin {
@@ -109,17 +111,15 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   };
   auto timeRun = [&](Push p, VkSampler s, uint32_t n) {
     std::vector<double> t;
-    for (int r = 0; r < 4; ++r) t.push_back(runOnce(kernel(p.kind, p.pad), p, s, n));  // run 0 warms up, then the median of 3
+    for (int r = 0; r < 4; ++r) t.push_back(runOnce(kernel(p.kind, p.pad), p, s, n));  // run 0 warms up, the fastest of 3
     t.erase(t.begin());
-    std::sort(t.begin(), t.end());
-    return t[1];
+    return fastestOf(t);
   };
-  // Launch cost: an empty dispatch of one workgroup, median of many.
+  // Launch cost: an empty dispatch of one workgroup, the fastest of many.
   Push e{kEmptyK, 0, 0, 0, 1.0f, 0.0f, 0.0f, 0.0f};
   std::vector<double> empties;
   for (int r = 0; r < 15; ++r) empties.push_back(timeRun(e, nearest->handle(), 64));
-  std::sort(empties.begin(), empties.end());
-  const double dispatch = empties[empties.size() / 2];
+  const double dispatch = fastestOf(empties);
   double perGroup = 0.0;  // every rate below removes the workgroups' setup from its time
   // Per workgroup of 64 invocations, while working: the same fadd work as 4096 workgroups of I iterations and as 64
   // workgroups of 64 I iterations (a device's per-group setup, beyond what overlaps with work).
@@ -133,14 +133,12 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       p.iters = 64u * I;
       few.push_back(timeRun(p, nearest->handle(), 64u * 64u));
     }
-    std::sort(many.begin(), many.end());
-    std::sort(few.begin(), few.end());
-    perGroup = std::max(many[2] - few[2], 0.0) / 4032.0;
+    perGroup = std::max(fastestOf(many) - fastestOf(few), 0.0) / 4032.0;
     log << "  workgroup " << perGroup * 1e9 << " ns per workgroup of 64 (the same work in 4096 workgroups vs 64: "
-        << many[2] * 1e3 << " / " << few[2] * 1e3 << " ms)\n";
+        << fastestOf(many) * 1e3 << " / " << fastestOf(few) * 1e3 << " ms)\n";
   }
   // A pipeline's first dispatch (the Vulkan build creates the technique inputs' pipelines each time it builds them):
-  // the empty kernel on a pipeline created just before, median of several, beyond a warm dispatch. lavapipe compiles
+  // the empty kernel on a pipeline created just before, the fastest of several, beyond a warm dispatch. lavapipe compiles
   // a pipeline's machine code at its first dispatch.
   double firstDispatch = 0.0;
   {
@@ -150,8 +148,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       vk::Kernel fresh(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout, sizeof(Push), std::span<const uint32_t>{}, spec);
       t.push_back(runOnce(fresh, e, nearest->handle(), 64));
     }
-    std::sort(t.begin(), t.end());
-    firstDispatch = std::max(t[t.size() / 2] - dispatch, 0.0);
+    firstDispatch = std::max(fastestOf(t) - dispatch, 0.0);
     log << "  first dispatch of a new pipeline: " << firstDispatch * 1e6 << " us beyond a warm one\n";
   }
   // Iterations grow until a run takes `target` seconds; the rate is work / (time - dispatch - the workgroups' setup).
@@ -218,10 +215,12 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   d.lookupsPerSecond[model::kUniformFetch] = rate(kUniformFetchK, 1.0, nearest->handle(), 1.0f, 0.0f);
   {
     Push p{kCopyK, 1, 0, 0, 1.5f, 0.0f, 0.0f, 0.0f};
-    std::vector<double> t;  // the median of five (each a median of three): the copy is the noisiest rate on a shared host
+    std::vector<double> t;  // the fastest of five (each of three): the copy is the noisiest rate on a shared host
     for (int r = 0; r < 5; ++r) t.push_back(timeRun(p, nearest->handle(), uint32_t(copyVec4s / 16)));
-    std::sort(t.begin(), t.end());
-    d.bandwidthBytesPerSecond = double(copyVec4s) * 32.0 / std::max(t[2] - dispatch, 1e-9);
+    // Like every rate, without the launch and the workgroups' setup (SwiftShader: 4096 workgroups x ~12 us were two
+    // thirds of this kernel's time, and read as a third of the bandwidth).
+    const uint32_t invocations = uint32_t(copyVec4s / 16);
+    d.bandwidthBytesPerSecond = double(copyVec4s) * 32.0 / std::max(fastestOf(t) - dispatch - double(invocations / 64) * perGroup, 1e-9);
   }
   d.dispatchSeconds = dispatch;
   d.firstDispatchSeconds = firstDispatch;
@@ -252,30 +251,54 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         << (d.foldsSpecConstants ? "compiled out" : "runs") << "; the block taken by every lane "
         << 100.0 * taken / std::max(work, 1e-12) << "%\n";
   }
-  {  // Raster rates from synthetic depth-only draws through the shadow pipeline (generated geometry, not a scene):
-     // two zero-area triangles (nothing covered: the targets' clear and copy-out alone), many tiny triangles into small maps
-     // (triangle-bound) and two large triangles into large maps (coverage-bound). The emulator under the device's
-     // profile counts their triangles and covered pixels; each empty run's time (the same maps) is removed, and the two
-     // equations give the two rates.
+  {  // Raster rates per pipeline from synthetic draws (generated geometry, never a scene): through the shadow pass's
+     // depth-only pipeline and through the G-buffer pass's (four RGBA32F targets, its vertex and fragment shaders).
+     // Per pipeline three runs: many tiny triangles into small targets (triangle-bound), two large triangles into large
+     // targets (coverage-bound), and zero-area triangles (nothing covered: the targets' clear and copy-out alone) in the
+     // same targets as each. The emulator under the device's profile counts their triangles and covered pixels; each
+     // empty run's time is removed, and the two equations give the two rates.
     const emu::DeviceProfile& prof = emu::profileForDevice(ctx.deviceName());
     struct Run { double seconds, triangles, fragments; };
-    auto rasterRun = [&](Mesh mesh, uint32_t size, uint32_t maps) {
-      Scene sc;
-      sc.meshes.push_back(std::move(mesh));
-      Object o;
-      o.model = identity();
-      sc.objects.push_back(o);
-      const std::vector<Vec3> dirs(maps, Vec3{0.0f, 1.0f, 0.0f});
-      ShadowPassVk pass(ctx, sc, size);
+    // The fastest of five timed runs after a warm-up.
+    auto fastestRun = [](auto&& run) {
       std::vector<double> t;
       for (int r = 0; r < 6; ++r) {
-        pass.run(dirs);
-        if (r) t.push_back(pass.lastMs * 1e-3);
+        const double s = run();
+        if (r) t.push_back(s);
       }
-      std::sort(t.begin(), t.end());
+      return fastestOf(t);
+    };
+    auto singleObject = [](Mesh mesh, uint32_t objects) {
+      Scene sc;
+      sc.meshes.push_back(std::move(mesh));
+      sc.materials.emplace_back();
+      for (uint32_t i = 0; i < objects; ++i) {
+        Object o;
+        o.model = identity();
+        sc.objects.push_back(o);
+      }
+      return sc;
+    };
+    // maps depth-only maps of size^2 seen from +y (the shadow pass), or `draws` draws of the mesh into a size^2
+    // G-buffer seen from +y (the plane faces the camera; the sphere fills most of the image).
+    auto depthRun = [&](Mesh mesh, uint32_t size, uint32_t maps) {
+      const Scene sc = singleObject(std::move(mesh), 1);
+      const std::vector<Vec3> dirs(maps, Vec3{0.0f, 1.0f, 0.0f});
+      ShadowPassVk pass(ctx, sc, size);
+      const double t = fastestRun([&] { pass.run(dirs); return pass.lastMs * 1e-3; });
       ShadowStats st;
       shadowEmu(sc, dirs, size, prof, &st);
-      return Run{t[2], double(st.raster.trianglesIn), double(st.raster.fragments)};
+      return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments)};
+    };
+    auto gbufferRun = [&](Mesh mesh, uint32_t size, uint32_t draws) {
+      Scene sc = singleObject(std::move(mesh), draws);
+      sc.width = sc.height = size;
+      sc.camera.eye = {0.0f, 3.0f, 0.0f}, sc.camera.up = {0.0f, 0.0f, -1.0f};
+      GbufferPassVk pass(ctx, sc);
+      const double t = fastestRun([&] { pass.run(); return pass.lastMs * 1e-3; });
+      GbufferStats st;
+      gbufferEmu(sc, prof, &st);
+      return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments)};
     };
     auto flat = [](Mesh m) {  // every vertex at the centre: zero-area triangles, the same bounds as a point
       for (auto& p : m.positions) p = {0.0f, 0.0f, 0.0f};
@@ -286,22 +309,35 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       m.uvs.resize(m.positions.size(), {0.0f, 0.0f});
       return m;
     };
-    const uint32_t smallSize = 32, smallMaps = opts.quick ? 4 : 16, bigSize = opts.quick ? 512 : 2048, bigMaps = opts.quick ? 4 : 8;
+    // a, a0: the triangle-bound run and its empty run; b, b0: the coverage-bound run and its empty run; targetBytes:
+    // the bytes of b's targets (cleared and copied out).
+    auto rates = [&](const char* name, const Run& a, const Run& a0, const Run& b, const Run& b0, double targetBytes) {
+      const double ta = std::max(a.seconds - a0.seconds, 1e-9), tb = std::max(b.seconds - b0.seconds, 1e-9);
+      // ta = a.triangles s_t + a.fragments s_f, the same for b: Cramer's rule, each cost kept positive.
+      const double det = a.triangles * b.fragments - b.triangles * a.fragments;
+      double st = (ta * b.fragments - tb * a.fragments) / det, sf = (a.triangles * tb - b.triangles * ta) / det;
+      if (!(st > 0)) st = ta / a.triangles;
+      if (!(sf > 0)) sf = tb / b.fragments;
+      log << "  raster    " << name << ": " << a.triangles << " triangles + " << a.fragments << " pixels in " << ta * 1e3
+          << " ms; " << b.triangles << " triangles + " << b.fragments << " pixels in " << tb * 1e3 << " ms; empty targets "
+          << a0.seconds * 1e3 << " / " << b0.seconds * 1e3 << " ms: " << st * 1e9 << " ns per triangle, " << sf * 1e9
+          << " ns per pixel\n";
+      // The targets' clear + copy-out per byte (the large empty run less a launch).
+      return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9)};
+    };
     const Mesh sphere = makeSphere(opts.quick ? 128 : 256, opts.quick ? 64 : 128);
-    const Run a = rasterRun(sphere, smallSize, smallMaps), a0 = rasterRun(flat(makePlane()), smallSize, smallMaps);
-    const Run b = rasterRun(makePlane(), bigSize, bigMaps), b0 = rasterRun(flat(makePlane()), bigSize, bigMaps);
-    const double ta = std::max(a.seconds - a0.seconds, 1e-9), tb = std::max(b.seconds - b0.seconds, 1e-9);
-    // ta = a.triangles s_t + a.fragments s_f, the same for b: Cramer's rule, each cost kept positive.
-    const double det = a.triangles * b.fragments - b.triangles * a.fragments;
-    double st = (ta * b.fragments - tb * a.fragments) / det, sf = (a.triangles * tb - b.triangles * ta) / det;
-    if (!(st > 0)) st = ta / a.triangles;
-    if (!(sf > 0)) sf = tb / b.fragments;
-    d.trianglesPerSecond = 1.0 / st, d.fragmentsPerSecond = 1.0 / sf;
-    // The targets' clear + copy-out per byte (the large empty run less a launch).
-    d.attachmentBytesPerSecond = double(bigSize) * bigSize * 4 * bigMaps / std::max(b0.seconds - dispatch, 1e-9);
-    log << "  raster    " << a.triangles << " triangles + " << a.fragments << " pixels in " << ta * 1e3 << " ms; " << b.triangles
-        << " triangles + " << b.fragments << " pixels in " << tb * 1e3 << " ms; empty targets " << a0.seconds * 1e3 << " / "
-        << b0.seconds * 1e3 << " ms\n";
+    {
+      const uint32_t small = 32, smallMaps = opts.quick ? 4 : 16, big = opts.quick ? 512 : 2048, bigMaps = opts.quick ? 4 : 8;
+      const Run a = depthRun(sphere, small, smallMaps), a0 = depthRun(flat(makePlane()), small, smallMaps);
+      const Run b = depthRun(makePlane(), big, bigMaps), b0 = depthRun(flat(makePlane()), big, bigMaps);
+      d.raster[model::kDepthOnly] = rates("depth-only", a, a0, b, b0, double(big) * big * 4 * bigMaps);
+    }
+    {
+      const uint32_t small = 64, draws = opts.quick ? 4 : 16, big = opts.quick ? 512 : 1024, bigDraws = 4;
+      const Run a = gbufferRun(sphere, small, draws), a0 = gbufferRun(flat(makePlane()), small, draws);
+      const Run b = gbufferRun(makePlane(), big, bigDraws), b0 = gbufferRun(flat(makePlane()), big, bigDraws);
+      d.raster[model::kGbufferRaster] = rates("G-buffer", a, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4));
+    }
   }
   hostCache(d.cacheLineBytes, d.cacheBytes);
   d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
@@ -311,8 +347,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   for (int f = 0; f < model::kTexFilters; ++f)
     log << "  " << std::left << std::setw(10) << model::kTexFilterNames[f] << d.lookupsPerSecond[size_t(f)] / 1e6 << " Mlookup/s\n";
   log << "  bandwidth " << d.bandwidthBytesPerSecond / 1e9 << " GB/s\n  dispatch  " << d.dispatchSeconds * 1e6 << " us\n";
-  log << "  triangles " << d.trianglesPerSecond / 1e6 << " M/s\n  fragments " << d.fragmentsPerSecond / 1e6
-      << " M/s\n  targets   " << d.attachmentBytesPerSecond / 1e9 << " GB/s (clear + copy-out)\n";
+  for (int r = 0; r < model::kRasterPipelines; ++r)
+    log << "  " << model::kRasterPipelineNames[r] << ": triangles " << d.raster[size_t(r)].trianglesPerSecond / 1e6
+        << " M/s, fragments " << d.raster[size_t(r)].fragmentsPerSecond / 1e6 << " M/s, targets "
+        << d.raster[size_t(r)].targetBytesPerSecond / 1e9 << " GB/s (clear + copy-out)\n";
   return d;
 }
 

@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
   modelCmd->add_option("--width", mo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
   modelCmd->add_option("--height", mo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   modelCmd->add_option("--samples", mo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
-  modelCmd->add_option("--repeat", mo.repeat, "timed runs of each measured pass (median)")->check(CLI::Range(1, 100));
+  modelCmd->add_option("--repeat", mo.repeat, "timed runs of each measured pass (the fastest is compared)")->check(CLI::Range(1, 100));
   modelCmd->add_option("--vis-maps", mo.visMaps, "shadow maps K of the scene's visibility block (default: the scene's)")
       ->check(CLI::Range(1, 1024));
   modelCmd->add_flag("--validate", mo.validate, "every shipped scene x technique on every present software device, ending with "
@@ -134,6 +134,7 @@ int main(int argc, char** argv) {
   modelCmd->add_option("--scenes", mo.scenes, "--validate: scene files (default: every scenes/*.json)");
   modelCmd->add_option("--devices-list", mo.devices, "--validate: software devices (default: lavapipe swiftshader)");
   modelCmd->add_option("--csv", mo.csv, "--validate: write one row per pass to this CSV");
+  modelCmd->add_flag("--calibrate", mo.calibrate, "--validate: calibrate each device (devices/<D>.json) just before measuring it");
   auto* bench = app.add_subcommand("bench", "time passes on the emulator and on a Vulkan device in one run; last line: ratio emu/vulkan");
   bench->add_option("--scene", bo.scene, "scene file");
   bench->add_option("--passes", bo.passes, "comma-separated passes: gbuffer, shadow, shade");

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cli/calibrate.h"
 #include "emu/device_profile.h"
 #include "inputs/environment.h"
 #include "inputs/glints.h"
@@ -23,17 +24,14 @@
 #include "passes/passes_vk.h"
 #include "passes/visibility.h"
 #include "scene/scene.h"
+#include "util/timer.h"
 #include "vk/context.h"
 
 namespace shadetwin {
 namespace {
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? -1.0 : v[v.size() / 2];
-}
-
-// Every pass of the frame on the Vulkan device, as the Vulkan build runs it (median of `repeat`, submit to completion):
+// Every pass of the frame on the Vulkan device, as the Vulkan build runs it (the fastest of `repeat` runs, submit to
+// completion, as calibrate times its microkernels: util/timer.h's fastestOf):
 // the persistent passes through their lastMs after a warm-up run, the technique inputs (built inside one function
 // each) through vk::DispatchLog.
 std::map<std::string, double> measurePasses(vk::Context& ctx, const Scene& scene, const emu::Texture& env, const ShadeInputs& in,
@@ -98,7 +96,7 @@ std::map<std::string, double> measurePasses(vk::Context& ctx, const Scene& scene
     }
   }
   std::map<std::string, double> m;
-  for (auto& [k, v] : t) m[k] = median(v);
+  for (auto& [k, v] : t) m[k] = fastestOf(v);
   return m;
 }
 
@@ -205,6 +203,12 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
   bool same = true;
   for (const std::string& d : devices) {
     if (!isSoftware(d)) throw std::runtime_error("model --validate: " + d + " is not a software device present here");
+    if (opts.calibrate) {
+      CalibrateOptions co;
+      co.device = d;
+      model::saveDeviceDesc(calibrateDevice(co, log), opts.devicesDir + "/" + d + ".json");
+      log << "wrote " << opts.devicesDir << "/" << d << ".json\n";
+    }
     const model::DeviceDesc desc = model::loadDeviceDesc(opts.devicesDir + "/" + d + ".json");
     vk::Context ctx(vk::ContextOptions{d == "lavapipe" ? "" : d, false});
     const emu::DeviceProfile& dev = emu::profileForDevice(ctx.deviceName());

@@ -19,11 +19,14 @@ struct ModelOptions {
   uint32_t width = 0, height = 0;
   uint32_t samples = 0;              // fis samples (0: the scene's)
   uint32_t visMaps = 0;              // shadow maps K of the scene's visibility block (0: the scene's)
-  uint32_t repeat = 3;               // timed runs of each measured pass (median)
+  uint32_t repeat = 3;               // timed runs of each measured pass (the fastest is compared)
   bool validate = false;             // every shipped scene x technique x software device
   std::vector<std::string> scenes;   // --validate: the scenes (default: every file in scenes/)
   std::vector<std::string> devices;  // --validate: the devices (default: lavapipe, swiftshader)
   std::string csv;                   // --validate: one row per pass
+  // --validate: calibrate each device (writing <devicesDir>/<device>.json) just before its passes are measured, so
+  // the prediction and the measurement see the same state of a shared host (its speed drifts 15-35% over minutes).
+  bool calibrate = false;
 };
 
 int modelCommand(const ModelOptions& opts, std::ostream& log);

@@ -43,8 +43,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   }
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
-                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "triangles_per_second",
-                "fragments_per_second", "attachment_bytes_per_second", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
+                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "raster", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
                 "folds_specialization_constants"},
             path, "");
   DeviceDesc d;
@@ -86,9 +85,14 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   if (!j.at("workgroup_seconds").is_number() || !(j.at("workgroup_seconds").get<double>() >= 0.0))
     fail(path, "'workgroup_seconds' must be a number >= 0");
   d.workgroupSeconds = j.at("workgroup_seconds").get<double>();
-  d.trianglesPerSecond = positive(j, "triangles_per_second", path, "");
-  d.fragmentsPerSecond = positive(j, "fragments_per_second", path, "");
-  d.attachmentBytesPerSecond = positive(j, "attachment_bytes_per_second", path, "");
+  checkKeys(j.at("raster"), {std::begin(kRasterPipelineNames), std::end(kRasterPipelineNames)}, path, "raster.");
+  for (int r = 0; r < kRasterPipelines; ++r) {
+    const std::string where = std::string("raster.") + kRasterPipelineNames[r] + ".";
+    const json& x = j.at("raster").at(kRasterPipelineNames[r]);
+    checkKeys(x, {"triangles_per_second", "fragments_per_second", "target_bytes_per_second"}, path, where);
+    d.raster[size_t(r)] = {positive(x, "triangles_per_second", path, where), positive(x, "fragments_per_second", path, where),
+                           positive(x, "target_bytes_per_second", path, where)};
+  }
   d.windowOps = positive(j, "window_ops", path, "");
   return d;
 }
@@ -106,6 +110,11 @@ std::string deviceDescJson(const DeviceDesc& d) {
   for (int c = 0; c < kOpClasses; ++c) ops[kOpClassNames[c]] = d.opsPerSecond[size_t(c)];
   for (int c = 0; c < kOpClasses; ++c) latency[kOpClassNames[c]] = d.latencySeconds[size_t(c)];
   for (int f = 0; f < kTexFilters; ++f) lookups[kTexFilterNames[f]] = d.lookupsPerSecond[size_t(f)];
+  json raster = json::object();
+  for (int r = 0; r < kRasterPipelines; ++r)
+    raster[kRasterPipelineNames[r]] = {{"triangles_per_second", d.raster[size_t(r)].trianglesPerSecond},
+                                       {"fragments_per_second", d.raster[size_t(r)].fragmentsPerSecond},
+                                       {"target_bytes_per_second", d.raster[size_t(r)].targetBytesPerSecond}};
   json j = {{"device", d.device},
             {"name", d.name},
             {"verified", d.verified},
@@ -121,9 +130,7 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"dispatch_seconds", d.dispatchSeconds},
             {"first_dispatch_seconds", d.firstDispatchSeconds},
             {"workgroup_seconds", d.workgroupSeconds},
-            {"triangles_per_second", d.trianglesPerSecond},
-            {"fragments_per_second", d.fragmentsPerSecond},
-            {"attachment_bytes_per_second", d.attachmentBytesPerSecond},
+            {"raster", raster},
             {"units_overlap", d.unitsOverlap},
             {"latency_seconds", latency},
             {"window_ops", d.windowOps},

@@ -16,6 +16,18 @@ inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd", "fmul", "ialu"
 // per lane.
 enum TexFilter { kNearest, kBilinear, kTrilinear, kUniformFetch, kTexFilters };
 inline constexpr const char* kTexFilterNames[kTexFilters] = {"nearest", "bilinear", "trilinear", "uniform"};
+/// Raster pipelines the model distinguishes: a triangle's set-up and a covered pixel cost what the pipeline makes of
+/// them (lavapipe: 145 ns a tiny triangle through the G-buffer's, 210 ns through the depth-only shadow pipeline; a
+/// covered pixel 10 ns with four RGBA32F targets and a fragment shader, 0.9 ns depth-only), so each has its rates.
+enum RasterPipeline { kDepthOnly, kGbufferRaster, kRasterPipelines };
+inline constexpr const char* kRasterPipelineNames[kRasterPipelines] = {"depth_only", "gbuffer"};
+
+/// Fixed-function rasterization through one pipeline: triangles (set-up, clipping, binning) and covered pixels
+/// (coverage, depth test and write, the targets' writes) per second; the shaders' own operations are counted with the
+/// ALU classes. Target bytes: the render targets cleared and copied out, per second.
+struct RasterRates {
+  double trianglesPerSecond = 0.0, fragmentsPerSecond = 0.0, targetBytesPerSecond = 0.0;
+};
 
 struct DeviceDesc {
   std::string device;      // the --device name: lavapipe, swiftshader, h100, h200
@@ -37,10 +49,8 @@ struct DeviceDesc {
   // Per compute workgroup (64 invocations) beyond the work itself: calibrate's same fadd work in 4096 workgroups against
   // 64 (SwiftShader sets up each workgroup's invocations as coroutines: ~15 us; lavapipe ~0.1-0.5 us).
   double workgroupSeconds = 0.0;
-  // Fixed-function rasterization: triangles (set-up, clipping, binning) and covered pixels (coverage, depth test and
-  // write) per second; the fragment shader's own operations are counted with the ALU classes.
-  double trianglesPerSecond = 0.0, fragmentsPerSecond = 0.0;
-  double attachmentBytesPerSecond = 0.0;  // render targets cleared and copied out (bytes of the target per second)
+  // Per raster pipeline (calibrate: generated geometry through the shadow pass's and the G-buffer pass's pipelines).
+  std::array<RasterRates, kRasterPipelines> raster{};
   // How the units' times combine: false (software devices: the same cores run arithmetic, texture filtering and
   // memory traffic one after another, so the times add), true (GPUs: separate units overlap, the slowest bounds).
   bool unitsOverlap = false;

@@ -57,8 +57,9 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
                      c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear] +
                      c.ops[opcount::kTexUniform] / d.lookupsPerSecond[kUniformFetch];
   p.memorySeconds = double(c.bytesRead + c.bytesWritten) / d.bandwidthBytesPerSecond;
-  p.rasterSeconds = double(c.triangles) / d.trianglesPerSecond + double(c.fragments) / d.fragmentsPerSecond +
-                    double(c.attachmentBytes) / d.attachmentBytesPerSecond;
+  const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
+  p.rasterSeconds = double(c.triangles) / r.trianglesPerSecond + double(c.fragments) / r.fragmentsPerSecond +
+                    double(c.attachmentBytes) / r.targetBytesPerSecond;
   const uint64_t groups = c.triangles ? 0 : c.workgroups ? c.workgroups : (c.invocations + 63) / 64;
   p.launchSeconds = double(std::max<uint64_t>(c.dispatches, 1)) * d.dispatchSeconds +
                     double(c.pipelines) * d.firstDispatchSeconds + double(groups) * d.workgroupSeconds;

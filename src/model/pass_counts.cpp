@@ -105,6 +105,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
   GbufferStats gs;
   PassCounts gb;
   gb.pass = "gbuffer";
+  gb.rasterPipeline = kGbufferRaster;
   GBuffer counted;
   addTicks(gb, countedTicks([&] { counted = gbufferCounted(scene, dev, &gs); }), 1);
   const GBuffer g = gbufferEmu(scene, dev);

@@ -12,6 +12,7 @@
 
 #include "emu/device_profile.h"
 #include "emu/texture.h"
+#include "model/device_desc.h"
 #include "model/op_count.h"
 #include "passes/shade.h"
 #include "scene/scene.h"
@@ -30,6 +31,7 @@ struct PassCounts {
   uint64_t bytesRead = 0, bytesWritten = 0;  // buffer traffic (texture reads are in the lookups)
   uint64_t attachmentBytes = 0;  // raster passes: render-target bytes cleared and copied out
   uint64_t triangles = 0, fragments = 0, helperLanes = 0;  // raster passes: triangles in, covered pixels, quad helpers
+  RasterPipeline rasterPipeline = kDepthOnly;              // raster passes: whose rates they run at
   // One core's time for the pass's 8-lane operations on the device's core model (CoreModel on), 0 when not scheduled
   // (GPUs; passes counted one lane at a time: vertex and fragment stages, the SH reduction).
   double scheduledSeconds = 0;

@@ -1,6 +1,8 @@
 // Wall-clock timing of host work in milliseconds (passes, benches, sweeps).
 #pragma once
+#include <algorithm>
 #include <chrono>
+#include <vector>
 
 namespace shadetwin {
 
@@ -15,5 +17,11 @@ double timeMs(F&& f) {
   f();
   return msSince(t0);
 }
+
+/// The time the performance model is compared with (calibrate's microkernels and the passes `model` measures): the
+/// fastest of several runs after a warm-up. On a shared host, contention (other tenants, a preempted driver thread)
+/// only ever adds time, so the minimum estimates the uncontended time a throughput model predicts and is far more
+/// repeatable than a median (Chen & Revels, "Robust benchmarking in noisy environments", 2016). -1 for no runs.
+inline double fastestOf(const std::vector<double>& t) { return t.empty() ? -1.0 : *std::min_element(t.begin(), t.end()); }
 
 }  // namespace shadetwin
