@@ -95,6 +95,23 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
   EXPECT_NE(errorOf(replaced("\"workgroup_seconds\": 0.0", "\"workgroup_seconds\": null")).find("'workgroup_seconds' must be a number >= 0"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"uniform\"", "\"uniforms\"")).find("unknown key 'lookups_per_second.uniforms'"), std::string::npos);
+  {
+    std::string s = good;
+    const size_t at = s.find("\"texture_miss_seconds\": ") + 24;
+    s.replace(at, s.find(',', at) - at, "-3");
+    EXPECT_NE(errorOf(s).find("'texture_miss_seconds' must be a number >= 0"), std::string::npos);
+  }
+  // Raster rates per pipeline: each pipeline's three rates, no other pipeline, positive.
+  EXPECT_NE(errorOf(replaced("\"gbuffer\": {", "\"deferred\": {")).find("unknown key 'raster.deferred'"), std::string::npos);
+  {
+    std::string s = good;  // the first "triangles_per_second" is depth_only's (keys are written sorted)
+    s.replace(s.find("\"triangles_per_second\""), 22, "\"triangle_per_second\"");
+    EXPECT_NE(errorOf(s).find("unknown key 'raster.depth_only.triangle_per_second'"), std::string::npos);
+    s = good;
+    const size_t at = s.rfind("\"fragments_per_second\": ") + 24;
+    s.replace(at, s.find(',', at) - at, "0");
+    EXPECT_NE(errorOf(s).find("'raster.gbuffer.fragments_per_second' must be positive"), std::string::npos);
+  }
   EXPECT_NE(errorOf(replaced("\"verified\": false", "\"verified\": 0")).find("'verified' must be true or false"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"dispatch_seconds\": 1e-05", "\"dispatch_seconds\": -1")).find("'dispatch_seconds' must be positive"),

@@ -44,6 +44,18 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   c.ops[opcount::kTexUniform] = 800000;      // 1 ms at 8e8/s (texelFetchUniform, per lane)
   c.bytesRead = 10000000, c.bytesWritten = 5000000;  // 1.5 ms at 1e10 B/s
   const Prediction s = predict(c, device(false));
+  {  // texture lines the cache simulation missed cost the device's miss time each, in the texture term
+    PassCounts m = c;
+    m.ops[opcount::kTexMiss] = 20000;
+    DeviceDesc d = device(false);
+    d.textureMissSeconds = 1e-7;  // 2 ms
+    EXPECT_DOUBLE_EQ(predict(m, d).textureSeconds, 5e-3 + 2e-3);
+    EXPECT_DOUBLE_EQ(predict(m, d).memorySeconds, 1.5e-3);
+    m.ops[opcount::kTexStreamMiss] = 5000;  // a prefetched stream's lines are memory traffic instead: 320 kB at 1e10 B/s
+    d.cacheLineBytes = 64;
+    EXPECT_DOUBLE_EQ(predict(m, d).textureSeconds, 5e-3 + 1.5e-3);
+    EXPECT_DOUBLE_EQ(predict(m, d).memorySeconds, 1.5e-3 + 3.2e-5);
+  }
   EXPECT_DOUBLE_EQ(s.aluSeconds, 2e-3);
   EXPECT_DOUBLE_EQ(s.textureSeconds, 5e-3);
   EXPECT_DOUBLE_EQ(s.memorySeconds, 1.5e-3);

@@ -82,6 +82,19 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     std::memcpy(levels.back().data(), px.data(), levels.back().size());
   }
   vk::Image img(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, T, T, 1, levels, 16, VK_IMAGE_VIEW_TYPE_2D);
+  // A texture far larger than the host's last-level cache (one level, 256 MiB; quick: 64 MiB) for the miss kernel.
+  const uint32_t B = opts.quick ? 2048u : 4096u;
+  std::unique_ptr<vk::Image> big;
+  {
+    std::vector<std::vector<uint8_t>> one(1);
+    one[0].resize(size_t(B) * B * 16);
+    for (size_t i = 0; i < one[0].size(); i += 4) {
+      const float f = float(i & 1023u) * (1.0f / 1024.0f);
+      std::memcpy(&one[0][i], &f, 4);
+    }
+    big = std::make_unique<vk::Image>(ctx, VK_FORMAT_R32G32B32A32_SFLOAT, B, B, 1, one, 16, VK_IMAGE_VIEW_TYPE_2D);
+  }
+  VkImageView view = img.view();  // the texture the kernels read
   auto makeSampler = [&](VkFilter f, VkSamplerMipmapMode m) {
     VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     si.magFilter = si.minFilter = f;
@@ -101,7 +114,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
 
   // One dispatch of `k` over n invocations, submit to completion, in seconds.
   auto runOnce = [&](vk::Kernel& k, Push p, VkSampler s, uint32_t n) {
-    const vk::Binding b[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, img.view(), s},
+    const vk::Binding b[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, view, s},
                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, src.handle()},
                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dst.handle()}};
     p.count = n;
@@ -210,6 +223,19 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         << tIter * 1e9 << " ns)\n";
   }
   d.lookupsPerSecond[model::kNearest] = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
+  {  // A texture-cache miss: the same nearest lookups on the large texture, where each lane's next texel is a new line
+     // (steps of ~71 texels and ~35 rows; the lanes start 16 texels apart), against the cache-resident 256^2. The lines
+     // that still hit (the cache's share of the texture) are taken out.
+    view = big->view();
+    const double missRate = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
+    view = img.view();
+    d.cacheLineBytes = 64, d.cacheBytes = 0.0;
+    hostCache(d.cacheLineBytes, d.cacheBytes);
+    const double missShare = std::max(0.0, 1.0 - d.cacheBytes / (double(B) * B * 16));
+    d.textureMissSeconds = std::max(1.0 / missRate - 1.0 / d.lookupsPerSecond[model::kNearest], 0.0) / std::max(missShare, 0.5);
+    log << "  texture   a cache miss " << d.textureMissSeconds * 1e9 << " ns (nearest lookups " << missRate / 1e6
+        << " M/s on " << B << "^2 RGBA32F, " << d.lookupsPerSecond[model::kNearest] / 1e6 << " M/s on 256^2)\n";
+  }
   d.lookupsPerSecond[model::kBilinear] = rate(kTexK, 1.0, bilinear->handle(), 1.0f, 0.0f);
   d.lookupsPerSecond[model::kTrilinear] = rate(kTexK, 1.0, trilinear->handle(), 1.0f, 1.5f);
   d.lookupsPerSecond[model::kUniformFetch] = rate(kUniformFetchK, 1.0, nearest->handle(), 1.0f, 0.0f);

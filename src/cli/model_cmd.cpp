@@ -142,7 +142,9 @@ std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, co
     log << "\n" << std::setprecision(1) << "      per invocation:";
     for (int k = 0; k < model::kOpClasses; ++k) log << " " << model::kOpClassNames[k] << " " << ops[size_t(k)] / inv;
     log << "; lookups nearest " << c.ops[opcount::kTexNearest] / inv << " bilinear " << c.ops[opcount::kTexBilinear] / inv
-        << " trilinear " << c.ops[opcount::kTexTrilinear] / inv << " uniform " << c.ops[opcount::kTexUniform] / inv << "; "
+        << " trilinear " << c.ops[opcount::kTexTrilinear] / inv << " uniform " << c.ops[opcount::kTexUniform] / inv
+        << "; texture lines " << c.ops[opcount::kTexLine] / inv << " (missed " << c.ops[opcount::kTexMiss] / inv << ", in streams "
+        << c.ops[opcount::kTexStreamMiss] / inv << "); "
         << c.invocations << " invocations, " << c.dispatches
         << (c.triangles ? " draws" : " dispatches");
     if (c.triangles) log << ", " << c.triangles << " triangles, " << c.fragments << " fragments, " << c.helperLanes << " helper lanes";
@@ -206,6 +208,7 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
     if (opts.calibrate) {
       CalibrateOptions co;
       co.device = d;
+      std::filesystem::create_directories(opts.devicesDir);
       model::saveDeviceDesc(calibrateDevice(co, log), opts.devicesDir + "/" + d + ".json");
       log << "wrote " << opts.devicesDir << "/" << d << ".json\n";
     }

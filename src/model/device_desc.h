@@ -42,6 +42,10 @@ struct DeviceDesc {
   int cacheLineBytes = 0;
   double cacheBytes = 0.0;      // the last level shared by all cores (CPU L2/L3 per machine, GPU L2)
   double bandwidthBytesPerSecond = 0.0;  // read + write of a large buffer
+  // A texture line the cache simulation misses (model/op_count.h TexCache), beyond a lookup that hits: calibrate's
+  // nearest lookups on a texture 8x the host's last-level cache against a cache-resident one (GPUs: a line at the
+  // memory bandwidth).
+  double textureMissSeconds = 0.0;
   double dispatchSeconds = 0.0;          // an empty compute dispatch, submit to completion
   // A pipeline's first dispatch beyond a warm one (lavapipe compiles its machine code then): calibrate's empty kernel on
   // a pipeline created just before, median of 9. Charged once per pipeline a pass creates (the technique inputs).

@@ -43,6 +43,8 @@ CoreModel coreModel(const DeviceDesc& d) {
     m.latency[size_t(k)] = d.latencySeconds[size_t(c)];
   }
   m.window = uint32_t(std::max(1.0, std::round(d.windowOps)));
+  m.cacheLineBytes = uint32_t(std::max(1, d.cacheLineBytes));
+  m.cacheBytes = d.cacheBytes;
   return m;
 }
 
@@ -55,8 +57,12 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   p.textureSeconds = c.ops[opcount::kTexNearest] / d.lookupsPerSecond[kNearest] +
                      c.ops[opcount::kTexBilinear] / d.lookupsPerSecond[kBilinear] +
                      c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear] +
-                     c.ops[opcount::kTexUniform] / d.lookupsPerSecond[kUniformFetch];
-  p.memorySeconds = double(c.bytesRead + c.bytesWritten) / d.bandwidthBytesPerSecond;
+                     c.ops[opcount::kTexUniform] / d.lookupsPerSecond[kUniformFetch] +
+                     (c.ops[opcount::kTexMiss] - c.ops[opcount::kTexStreamMiss]) * d.textureMissSeconds;
+  // Buffer bytes and the texture lines a stream prefetcher fetched (opcount::TexCache) at the memory's bandwidth; the
+  // other missed lines cost the device's miss time each, in the texture term.
+  p.memorySeconds = (double(c.bytesRead + c.bytesWritten) + c.ops[opcount::kTexStreamMiss] * double(d.cacheLineBytes)) /
+                    d.bandwidthBytesPerSecond;
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
   p.rasterSeconds = double(c.triangles) / r.trianglesPerSecond + double(c.fragments) / r.fragmentsPerSecond +
                     double(c.attachmentBytes) / r.targetBytesPerSecond;

@@ -21,10 +21,11 @@ namespace opcount {
 
 enum Kind {
   kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp,
-  kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kKinds
+  kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kTexLine, kTexMiss, kTexStreamMiss, kKinds
 };
 inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "tex_lookup", "texel",
-                                          "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform"};
+                                          "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform", "tex_line",
+                                          "tex_miss", "tex_stream_miss"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
 inline void tick(Kind k, uint64_t n = 1) { counts[size_t(k)] += n; }
 
@@ -57,6 +58,62 @@ struct Scheduler {
   }
 };
 inline thread_local Scheduler sched;
+
+// The texture cache (issue 19: texels and cache lines touched, so reuse between neighbouring pixels shows): the lines
+// each lane's lookup reads (its filter footprint on its level or two), through a set-associative LRU cache with the
+// device's line size and capacity, in the order the counted build runs the lanes (8-lane vectors in the emulator's
+// tile order; one thread). tex_line counts the distinct lines of each lane's lookup, tex_miss those not in the cache;
+// tex_stream_miss the misses a stream prefetcher covers: the line next to (or before) one of the last 16 misses, as
+// when a pass reads rows in order (a host CPU's prefetcher follows such sequences; their cost is the bandwidth's, a
+// scattered miss costs its latency).
+// Addresses are the texels' host addresses (each level one contiguous allocation, rows then layers, as on a device).
+struct TexCache {
+  static constexpr uint32_t kWays = 16;
+  uint32_t lineShift = 6;
+  uint64_t sets = 0;               // 0: off
+  std::vector<uint64_t> tags;      // sets x kWays, most recently used first; 0 = empty (tags are line + 1)
+  uint64_t recent[16] = {};        // the last misses (lines + 1), a ring
+  uint32_t nRecent = 0;
+  void configure(uint32_t lineBytes, double capacityBytes) {
+    lineShift = 0;
+    while ((2u << lineShift) <= lineBytes) ++lineShift;
+    const double lines = capacityBytes / double(1u << lineShift);
+    sets = lines >= kWays ? uint64_t(lines / kWays) : 0;
+    tags.assign(sets * kWays, 0);
+    std::fill(std::begin(recent), std::end(recent), 0);
+    nRecent = 0;
+  }
+  // The lookups' footprint lines: counted once each per lane (a bilinear 2x2 usually spans one or two lines).
+  void lane(const uint64_t* addrs, int n) {
+    uint64_t seen[16];
+    int m = 0;
+    for (int i = 0; i < n; ++i) {
+      const uint64_t line = addrs[i] >> lineShift;
+      bool dup = false;
+      for (int j = 0; j < m; ++j) dup = dup || seen[j] == line;
+      if (!dup && m < 16) seen[m++] = line;
+    }
+    for (int j = 0; j < m; ++j) touch(seen[j]);
+  }
+  void touch(uint64_t line) {
+    ++counts[kTexLine];
+    if (!sets) return;
+    uint64_t* set = tags.data() + (line * 0x9E3779B97F4A7C15ull >> 20) % sets * kWays;  // hashed index: no aliasing of
+    const uint64_t tag = line + 1;                                                         // power-of-two row strides
+    uint32_t w = 0;
+    while (w < kWays && set[w] != tag) ++w;
+    if (w == kWays) {  // a miss evicts the least recently used way
+      ++counts[kTexMiss], w = kWays - 1;
+      bool stream = false;
+      for (uint64_t r : recent) stream = stream || (r && (r == tag - 1 || r == tag + 1));
+      if (stream) ++counts[kTexStreamMiss];
+      recent[nRecent++ % 16] = tag;
+    }
+    for (; w > 0; --w) set[w] = set[w - 1];
+    set[0] = tag;
+  }
+};
+inline thread_local TexCache texCache;
 
 // How the device runs the dialect's IF_ANY blocks (a structured `if` in GLSL), set per counted run. false: a vector
 // skips a block none of its lanes takes (a GPU's warp branches around it). true: the device runs every block under
@@ -229,6 +286,45 @@ template <int N> inline void countUniformFetches(F<N>) {
   if (counting()) tick(kTexUniform, uint64_t(N));
 }
 
+/// The host addresses of the texels textureLod(u, v, layer, lod) reads (Vulkan's texel selection, spec "Texel
+/// Filtering": level(s) from the clamped LOD and the mipmap mode, the 2x2 (linear) or 1 (nearest) texels about
+/// (u w - 0.5, v h - 0.5) wrapped per address mode); up to 8 into `out`, returns how many. Non-finite inputs read the
+/// first texel (what they read does not matter to the cache, only that something is read).
+inline int texelAddresses(const emu::Texture& tex, const emu::SamplerDesc& s, float u, float v, float layer, float lod,
+                          uint64_t* out) {
+  if (!std::isfinite(u) || !std::isfinite(v)) u = v = 0.0f;
+  if (!std::isfinite(lod)) lod = 0.0f;
+  const float maxLevel = float(tex.levelCount() - 1);
+  const float l = std::fmin(std::fmax(lod + s.lodBias, std::fmax(s.minLod, 0.0f)), std::fmin(s.maxLod, maxLevel));
+  const bool linear = (l > 0.0f ? s.minFilter : s.magFilter) == emu::Filter::Linear;
+  uint32_t levels[2] = {0, 0};
+  int nLevels = 1;
+  if (s.mipmapMode == emu::MipmapMode::Nearest) {
+    levels[0] = uint32_t(std::fmin(std::floor(l + 0.5f), maxLevel));
+  } else {
+    levels[0] = uint32_t(std::floor(l));
+    if (float(levels[0]) < l && levels[0] + 1 <= uint32_t(maxLevel)) levels[1] = levels[0] + 1, nLevels = 2;
+  }
+  const int32_t ly = int32_t(std::fmin(std::fmax(std::floor(std::isfinite(layer) ? layer + 0.5f : 0.0f), 0.0f),
+                                       float(tex.layers() - 1)));
+  auto wrap = [](int32_t i, int32_t n, emu::AddressMode m) {
+    if (m == emu::AddressMode::Repeat) return ((i % n) + n) % n;
+    return std::min(std::max(i, 0), n - 1);  // clamp to edge (mirrored repeat: the same lines to within one texel)
+  };
+  int n = 0;
+  for (int k = 0; k < nLevels; ++k) {
+    const int32_t w = int32_t(tex.levelWidth(levels[k])), h = int32_t(tex.levelHeight(levels[k]));
+    const float x = u * float(w) - (linear ? 0.5f : 0.0f), y = v * float(h) - (linear ? 0.5f : 0.0f);
+    const int32_t x0 = int32_t(std::fmax(std::fmin(std::floor(x), 1e9f), -1e9f));
+    const int32_t y0 = int32_t(std::fmax(std::fmin(std::floor(y), 1e9f), -1e9f));
+    for (int dy = 0; dy < (linear ? 2 : 1); ++dy)
+      for (int dx = 0; dx < (linear ? 2 : 1); ++dx)
+        out[n++] = uint64_t(reinterpret_cast<uintptr_t>(tex.texelPtr(levels[k], uint32_t(ly), uint32_t(wrap(x0 + dx, w, s.addressU)),
+                                                                      uint32_t(wrap(y0 + dy, h, s.addressV)))));
+  }
+  return n;
+}
+
 /// Texels a linear-filtered lookup at `lod` reads on a texture of `levels` levels: 4 per level, two
 /// levels when the LOD falls strictly between levels (trilinear), one otherwise.
 inline uint64_t texelsRead(float lod, uint32_t levels) {
@@ -251,6 +347,8 @@ V4<opcount::F<N>> textureLodLanes(const Sampler2D& s, opcount::F<N> u, opcount::
       opcount::tick(opcount::kTexel, nearest ? 1 : texels);
       const bool twoLevels = texels == 8 && s.desc.mipmapMode == emu::MipmapMode::Linear;
       opcount::tick(nearest ? opcount::kTexNearest : twoLevels ? opcount::kTexTrilinear : opcount::kTexBilinear);
+      uint64_t addrs[8];
+      opcount::texCache.lane(addrs, opcount::texelAddresses(*s.tex, s.desc, u.x[i], v.x[i], layer.x[i], lod.x[i], addrs));
     }
   }
   const V4<emu::F32<N>> r = textureLodLanes(s, u.x, v.x, lod.x, layer.x);
@@ -261,6 +359,12 @@ template <int N>
 V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::I<N> y, int level,
                                    opcount::I<N> layer = opcount::I<N>(0)) {
   opcount::countFetches(N);
+  if (opcount::counting())
+    for (int i = 0; i < N; ++i) {  // texelFetch coordinates are in range (the dialect's contract)
+      const uint64_t a = uint64_t(reinterpret_cast<uintptr_t>(s.tex->texelPtr(uint32_t(level), uint32_t(layer.x[i]),
+                                                                               uint32_t(x.x[i]), uint32_t(y.x[i]))));
+      opcount::texCache.lane(&a, 1);
+    }
   const V4<emu::F32<N>> r = texelFetchLanes(s, x.x, y.x, level, layer.x);
   const double t = std::max({x.t, y.t, layer.t});
   return V4<opcount::F<N>>(opcount::F<N>(r.x, t), opcount::F<N>(r.y, t), opcount::F<N>(r.z, t), opcount::F<N>(r.w, t));
@@ -269,6 +373,12 @@ template <int N>
 void uintFetchLanes(const USampler2DArray& s, opcount::I<N> x, opcount::I<N> y, opcount::I<N> layer, int level, opcount::U<N>& a,
                     opcount::U<N>& b, opcount::U<N>& c, opcount::U<N>& d) {
   opcount::countFetches(N);
+  if (opcount::counting())
+    for (int i = 0; i < N; ++i) {
+      const uint64_t a = uint64_t(reinterpret_cast<uintptr_t>(s.tex->texelPtr(uint32_t(level), uint32_t(layer.x[i]),
+                                                                               uint32_t(x.x[i]), uint32_t(y.x[i]))));
+      opcount::texCache.lane(&a, 1);
+    }
   emu::U32<N> ra, rb, rc, rd;
   uintFetchLanes(s, x.x, y.x, layer.x, level, ra, rb, rc, rd);
   a.x = ra, b.x = rb, c.x = rc, d.x = rd;

@@ -77,6 +77,7 @@ std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& 
     opcount::counts = {};
     opcount::executeEveryBlock = core.executeEveryBlock;
     opcount::foldsSpecConstants = core.foldsSpecConstants;
+    opcount::texCache.configure(core.cacheLineBytes, core.cacheBytes);  // cold at the start of every counted pass
     opcount::Scheduler& s = opcount::sched;
     s.on = core.on;
     if (core.on) {

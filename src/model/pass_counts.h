@@ -45,6 +45,10 @@ struct CoreModel {
   bool on = false;
   std::array<double, opcount::kKinds> latency{}, interval{};
   uint32_t window = 256;
+  // The texture cache of the counted run (opcount::TexCache): the device's line size and capacity (0: no capacity
+  // given, lines are counted and no miss is).
+  uint32_t cacheLineBytes = 64;
+  double cacheBytes = 0.0;
 };
 
 /// Runs `f` on the calling thread alone (a TBB arena of one) with the counters cleared; returns its ticks.

@@ -1,0 +1,132 @@
+// The counting build's texture cache (issue 19, model/op_count.h): which texels a lookup reads (Vulkan's texel
+// selection), LRU replacement in a set-associative cache, and that the counted lookups of neighbouring pixels reuse
+// lines where scattered lookups do not.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "model/op_count.h"
+
+namespace {
+
+emu::Texture rgba32f(uint32_t w, uint32_t h, uint32_t layers, bool chain) {
+  std::vector<std::vector<uint8_t>> levels;
+  for (uint32_t l = 0;; ++l) {
+    const uint32_t lw = std::max(1u, w >> l), lh = std::max(1u, h >> l);
+    levels.emplace_back(size_t(lw) * lh * layers * 16, uint8_t(l));
+    if (!chain || (lw == 1 && lh == 1)) break;
+  }
+  return emu::Texture(emu::Format::RGBA32F, w, h, layers, std::move(levels));
+}
+
+uint64_t addr(const emu::Texture& t, uint32_t level, uint32_t layer, uint32_t x, uint32_t y) {
+  return uint64_t(reinterpret_cast<uintptr_t>(t.texelPtr(level, layer, x, y)));
+}
+
+TEST(TexCache, LookupsReadTheTexelsOfTheirFilterFootprint) {
+  const emu::Texture t = rgba32f(64, 32, 3, true);
+  emu::SamplerDesc s;  // linear, linear mips, clamp
+  uint64_t a[8];
+  // Bilinear at level 0 about texel centre (10.5, 5.5) + (0.25, 0.25): texels (10..11, 5..6) of layer 2.
+  ASSERT_EQ(opcount::texelAddresses(t, s, 10.75f / 64, 5.75f / 32, 2.0f, 0.0f, a), 4);
+  EXPECT_EQ(a[0], addr(t, 0, 2, 10, 5));
+  EXPECT_EQ(a[1], addr(t, 0, 2, 11, 5));
+  EXPECT_EQ(a[2], addr(t, 0, 2, 10, 6));
+  EXPECT_EQ(a[3], addr(t, 0, 2, 11, 6));
+  // Trilinear between levels 1 and 2: four texels on each.
+  ASSERT_EQ(opcount::texelAddresses(t, s, 0.5f, 0.5f, 0.0f, 1.5f, a), 8);
+  EXPECT_EQ(a[0], addr(t, 1, 0, 15, 7));
+  EXPECT_EQ(a[4], addr(t, 2, 0, 7, 3));
+  // An integer LOD reads one level; a LOD past the chain the last level (1x1 here: one texel, four times).
+  EXPECT_EQ(opcount::texelAddresses(t, s, 0.5f, 0.5f, 0.0f, 2.0f, a), 4);
+  ASSERT_EQ(opcount::texelAddresses(t, s, 0.5f, 0.5f, 0.0f, 99.0f, a), 4);
+  EXPECT_EQ(a[0], addr(t, 6, 0, 0, 0));
+  EXPECT_EQ(a[3], addr(t, 6, 0, 0, 0));
+  // Repeat wraps the footprint at u = 0 to the last column; clamp keeps it on the first.
+  s.addressU = emu::AddressMode::Repeat;
+  opcount::texelAddresses(t, s, 0.0f, 0.5f, 0.0f, 0.0f, a);
+  EXPECT_EQ(a[0], addr(t, 0, 0, 63, 15));
+  EXPECT_EQ(a[1], addr(t, 0, 0, 0, 15));
+  // Nearest filtering, nearest mips: one texel, on the rounded level.
+  s.magFilter = s.minFilter = emu::Filter::Nearest, s.mipmapMode = emu::MipmapMode::Nearest;
+  ASSERT_EQ(opcount::texelAddresses(t, s, 0.99f, 0.01f, 1.0f, 1.6f, a), 1);
+  EXPECT_EQ(a[0], addr(t, 2, 1, 15, 0));
+}
+
+TEST(TexCache, LeastRecentlyUsedLinesAreEvicted) {
+  opcount::TexCache c;
+  c.configure(64, 64.0 * 16);  // one set of 16 ways: fully associative
+  ASSERT_EQ(c.sets, 1u);
+  auto run = [&](int lines, int rounds) {
+    opcount::counts = {};
+    for (int r = 0; r < rounds; ++r)
+      for (int i = 0; i < lines; ++i) c.touch(uint64_t(1000 + i));
+    return opcount::counts[opcount::kTexMiss];
+  };
+  EXPECT_EQ(run(16, 3), 16u);       // fits: the first round's misses only
+  c.configure(64, 64.0 * 16);
+  EXPECT_EQ(run(17, 3), 51u);       // one line more than the ways, cyclic: LRU misses every time
+  c.configure(64, 64.0 * 16);
+  EXPECT_EQ(opcount::counts[opcount::kTexLine], 51u);  // configure leaves the counters, clears the lines
+  EXPECT_EQ(run(4, 2), 4u);
+  // Misses next to a recent miss are a stream (a prefetcher's): lines 1000..1003 above are one, their first miss not.
+  EXPECT_EQ(opcount::counts[opcount::kTexStreamMiss], 3u);
+  c.configure(64, 64.0 * 16);
+  opcount::counts = {};
+  for (uint64_t l : {10u, 30u, 50u, 70u, 31u, 90u}) c.touch(l);  // scattered, one neighbour of a recent miss (31)
+  EXPECT_EQ(opcount::counts[opcount::kTexMiss], 6u);
+  EXPECT_EQ(opcount::counts[opcount::kTexStreamMiss], 1u);
+  // A lane's footprint counts each distinct line once: a 2x2 footprint on two rows of one line each.
+  opcount::counts = {};
+  const uint64_t fp[4] = {64 * 7 + 0, 64 * 7 + 16, 64 * 9 + 0, 64 * 9 + 16};
+  c.lane(fp, 4);
+  EXPECT_EQ(opcount::counts[opcount::kTexLine], 2u);
+  // No capacity: lines are counted, nothing misses.
+  c.configure(64, 0.0);
+  opcount::counts = {};
+  EXPECT_EQ(run(40, 2), 0u);
+  EXPECT_EQ(opcount::counts[opcount::kTexLine], 80u);
+}
+
+// The counted bridge (shade::textureLodLanes over counting lanes) feeds the cache: 64x64 "pixels" looking up a 1024^2
+// texture at their own texel (neighbours share lines) miss about once per line of the footprint, while the same number
+// of lookups at random coordinates miss nearly every time in a cache smaller than the texture.
+TEST(TexCache, NeighbouringLookupsReuseLinesScatteredOnesDoNot) {
+  const emu::Texture t = rgba32f(1024, 1024, 1, false);  // 16 MiB
+  shadetwin::shade::Sampler2D s{&t, emu::SamplerDesc{}, &emu::lavapipeProfile()};
+  s.desc.magFilter = s.desc.minFilter = emu::Filter::Nearest;
+  auto misses = [&](bool scattered, uint32_t seed) {
+    opcount::counts = {};
+    opcount::texCache.configure(64, 1 << 20);  // 1 MiB
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> U(0.0f, 1.0f);
+    for (int y = 0; y < 64; ++y)
+      for (int x = 0; x < 64; x += 8) {
+        opcount::F<8> u(0.0f), v(0.0f), lod(0.0f);
+        for (int i = 0; i < 8; ++i) {
+          u.set(i, scattered ? U(rng) : (float(x + i) + 0.5f) / 1024.0f);
+          v.set(i, scattered ? U(rng) : (float(y) + 0.5f) / 1024.0f);
+        }
+        shadetwin::shade::textureLodLanes(s, u, v, lod);
+      }
+    EXPECT_EQ(opcount::counts[opcount::kTexLookup], 4096u);
+    return opcount::counts[opcount::kTexMiss];
+  };
+  // Each row of 64 texels (1 KiB) is 16 lines, 17 where the level's storage does not start on a line.
+  uint64_t rowLines = 0;
+  for (uint32_t y = 0; y < 64; ++y) rowLines += (addr(t, 0, 0, 63, y) + 15) / 64 - addr(t, 0, 0, 0, y) / 64 + 1;
+  ASSERT_GE(rowLines, 64u * 16u);
+  ASSERT_LE(rowLines, 64u * 17u);
+  for (uint32_t seed : {1u, 2u, 3u, 4u, 5u}) {
+    EXPECT_EQ(misses(false, seed), rowLines);  // one miss per line of the footprint: 4 pixels per 64-byte line
+    EXPECT_EQ(opcount::counts[opcount::kTexStreamMiss], rowLines - 64);  // each row a stream after its first line
+    const uint64_t m = misses(true, seed);
+    EXPECT_GT(m, 3900u) << seed;  // 4096 lookups over 262,144 lines, 16,384 of which fit
+    EXPECT_LE(m, 4096u) << seed;
+    EXPECT_LT(opcount::counts[opcount::kTexStreamMiss], 40u) << seed;  // scattered: hardly ever next to a recent miss
+  }
+}
+
+}  // namespace
