@@ -51,10 +51,10 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
     d.textureMissSeconds = 1e-7;  // 2 ms
     EXPECT_DOUBLE_EQ(predict(m, d).textureSeconds, 5e-3 + 2e-3);
     EXPECT_DOUBLE_EQ(predict(m, d).memorySeconds, 1.5e-3);
-    m.ops[opcount::kTexStreamMiss] = 5000;  // a prefetched stream's lines are memory traffic instead: 320 kB at 1e10 B/s
-    d.cacheLineBytes = 64;
-    EXPECT_DOUBLE_EQ(predict(m, d).textureSeconds, 5e-3 + 1.5e-3);
-    EXPECT_DOUBLE_EQ(predict(m, d).memorySeconds, 1.5e-3 + 3.2e-5);
+    m.ops[opcount::kTexStreamMiss] = 5000;  // a prefetched stream's lines cost the stream time instead
+    d.textureStreamSeconds = 1e-8;
+    EXPECT_DOUBLE_EQ(predict(m, d).textureSeconds, 5e-3 + 1.5e-3 + 5e-5);
+    EXPECT_DOUBLE_EQ(predict(m, d).memorySeconds, 1.5e-3);
   }
   EXPECT_DOUBLE_EQ(s.aluSeconds, 2e-3);
   EXPECT_DOUBLE_EQ(s.textureSeconds, 5e-3);

@@ -33,7 +33,7 @@ static_assert(sizeof(Push) == 32, "calibrate.comp push constants");
 
 enum Kind : uint32_t {
   kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK,
-  kBranchUnrolledK, kSpecBranchK, kUniformFetchK
+  kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK
 };
 
 // The host's last-level cache (sysfs), for the description: line size and capacity.
@@ -61,7 +61,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
-  std::unique_ptr<vk::Kernel> kernels[2][kUniformFetchK + 1];
+  std::unique_ptr<vk::Kernel> kernels[2][kStreamK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
       const uint32_t spec[] = {kind, dependent};
@@ -233,16 +233,26 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     hostCache(d.cacheLineBytes, d.cacheBytes);
     const double missShare = std::max(0.0, 1.0 - d.cacheBytes / (double(B) * B * 16));
     d.textureMissSeconds = std::max(1.0 / missRate - 1.0 / d.lookupsPerSecond[model::kNearest], 0.0) / std::max(missShare, 0.5);
-    log << "  texture   a cache miss " << d.textureMissSeconds * 1e9 << " ns (nearest lookups " << missRate / 1e6
-        << " M/s on " << B << "^2 RGBA32F, " << d.lookupsPerSecond[model::kNearest] / 1e6 << " M/s on 256^2)\n";
+    // A streamed line: texelFetch along the rows of the large texture against the same on the cache-resident one,
+    // per lookup, times the lookups a line holds (RGBA32F: 16 bytes each).
+    view = big->view();
+    const double streamRate = rate(kStreamK, 1.0, nearest->handle(), 1.0f, 0.0f);
+    view = img.view();
+    const double residentRate = rate(kStreamK, 1.0, nearest->handle(), 1.0f, 0.0f);
+    d.textureStreamSeconds = std::max(1.0 / streamRate - 1.0 / residentRate, 0.0) * double(d.cacheLineBytes) / 16.0 /
+                             std::max(missShare, 0.5);
+    log << "  texture   a scattered cache miss " << d.textureMissSeconds * 1e9 << " ns (nearest lookups " << missRate / 1e6
+        << " M/s on " << B << "^2 RGBA32F, " << d.lookupsPerSecond[model::kNearest] / 1e6
+        << " M/s on 256^2), a streamed line " << d.textureStreamSeconds * 1e9 << " ns (row-order fetches "
+        << streamRate / 1e6 << " / " << residentRate / 1e6 << " M/s)\n";
   }
   d.lookupsPerSecond[model::kBilinear] = rate(kTexK, 1.0, bilinear->handle(), 1.0f, 0.0f);
   d.lookupsPerSecond[model::kTrilinear] = rate(kTexK, 1.0, trilinear->handle(), 1.0f, 1.5f);
   d.lookupsPerSecond[model::kUniformFetch] = rate(kUniformFetchK, 1.0, nearest->handle(), 1.0f, 0.0f);
   {
     Push p{kCopyK, 1, 0, 0, 1.5f, 0.0f, 0.0f, 0.0f};
-    std::vector<double> t;  // the fastest of five (each of three): the copy is the noisiest rate on a shared host
-    for (int r = 0; r < 5; ++r) t.push_back(timeRun(p, nearest->handle(), uint32_t(copyVec4s / 16)));
+    std::vector<double> t;  // the fastest of twelve (each of three): the copy is the noisiest rate on a shared host
+    for (int r = 0; r < 12; ++r) t.push_back(timeRun(p, nearest->handle(), uint32_t(copyVec4s / 16)));
     // Like every rate, without the launch and the workgroups' setup (SwiftShader: 4096 workgroups x ~12 us were two
     // thirds of this kernel's time, and read as a third of the bandwidth).
     const uint32_t invocations = uint32_t(copyVec4s / 16);

@@ -43,7 +43,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   }
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
-                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "raster", "texture_miss_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
+                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "raster", "texture_miss_seconds", "texture_stream_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
                 "folds_specialization_constants"},
             path, "");
   DeviceDesc d;
@@ -88,6 +88,9 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   if (!j.at("texture_miss_seconds").is_number() || !(j.at("texture_miss_seconds").get<double>() >= 0.0))
     fail(path, "'texture_miss_seconds' must be a number >= 0");
   d.textureMissSeconds = j.at("texture_miss_seconds").get<double>();
+  if (!j.at("texture_stream_seconds").is_number() || !(j.at("texture_stream_seconds").get<double>() >= 0.0))
+    fail(path, "'texture_stream_seconds' must be a number >= 0");
+  d.textureStreamSeconds = j.at("texture_stream_seconds").get<double>();
   checkKeys(j.at("raster"), {std::begin(kRasterPipelineNames), std::end(kRasterPipelineNames)}, path, "raster.");
   for (int r = 0; r < kRasterPipelines; ++r) {
     const std::string where = std::string("raster.") + kRasterPipelineNames[r] + ".";
@@ -135,6 +138,7 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"workgroup_seconds", d.workgroupSeconds},
             {"raster", raster},
             {"texture_miss_seconds", d.textureMissSeconds},
+            {"texture_stream_seconds", d.textureStreamSeconds},
             {"units_overlap", d.unitsOverlap},
             {"latency_seconds", latency},
             {"window_ops", d.windowOps},

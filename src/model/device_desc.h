@@ -46,6 +46,10 @@ struct DeviceDesc {
   // nearest lookups on a texture 8x the host's last-level cache against a cache-resident one (GPUs: a line at the
   // memory bandwidth).
   double textureMissSeconds = 0.0;
+  // A texture line of a stream (misses next to a recent miss, TexCache's tex_stream_miss), which a prefetcher fetches
+  // ahead: calibrate's row-order texelFetch on the large texture against the cache-resident one (GPUs: a line at the
+  // memory bandwidth, like a scattered one).
+  double textureStreamSeconds = 0.0;
   double dispatchSeconds = 0.0;          // an empty compute dispatch, submit to completion
   // A pipeline's first dispatch beyond a warm one (lavapipe compiles its machine code then): calibrate's empty kernel on
   // a pipeline created just before, median of 9. Charged once per pipeline a pass creates (the technique inputs).

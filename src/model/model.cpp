@@ -58,11 +58,9 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
                      c.ops[opcount::kTexBilinear] / d.lookupsPerSecond[kBilinear] +
                      c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear] +
                      c.ops[opcount::kTexUniform] / d.lookupsPerSecond[kUniformFetch] +
-                     (c.ops[opcount::kTexMiss] - c.ops[opcount::kTexStreamMiss]) * d.textureMissSeconds;
-  // Buffer bytes and the texture lines a stream prefetcher fetched (opcount::TexCache) at the memory's bandwidth; the
-  // other missed lines cost the device's miss time each, in the texture term.
-  p.memorySeconds = (double(c.bytesRead + c.bytesWritten) + c.ops[opcount::kTexStreamMiss] * double(d.cacheLineBytes)) /
-                    d.bandwidthBytesPerSecond;
+                     (c.ops[opcount::kTexMiss] - c.ops[opcount::kTexStreamMiss]) * d.textureMissSeconds +
+                     c.ops[opcount::kTexStreamMiss] * d.textureStreamSeconds;  // the cache simulation's missed lines
+  p.memorySeconds = double(c.bytesRead + c.bytesWritten) / d.bandwidthBytesPerSecond;
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
   p.rasterSeconds = double(c.triangles) / r.trianglesPerSecond + double(c.fragments) / r.fragmentsPerSecond +
                     double(c.attachmentBytes) / r.targetBytesPerSecond;

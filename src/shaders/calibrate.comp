@@ -19,6 +19,8 @@
 //                 the fadd kernel's time when the device runs every block under a mask, about nothing when it skips
 //   kind 11 branch the same, the `if` around the whole loop: a loop whose lanes are all inactive may exit at once
 //   kind 12 branch kind 10 with the block's steps in a loop of a literal 4 iterations (a compiler may unroll it)
+//   kind 15 stream texelFetch along the rows: invocation i reads texels i*iters .. (i+1)*iters - 1 of the texture in
+//                 row-major order (a prefetcher's streams; against a cache-resident texture: a streamed line's cost)
 // DEPENDENT (specialization constant 1) runs kinds 0-5 on one chain: time per step is the latency, not the issue rate.
 #extension GL_GOOGLE_include_directive : require
 
@@ -89,6 +91,13 @@ void main() {
     for (uint n = 0u; n < pc.iters; ++n) {
       acc += textureLod(tex, p, pc.lod);
       p = fract(p + vec2(pc.step, pc.step * 0.5));
+    }
+  } else if (KIND == 15u) {
+    const uint w = uint(textureSize(tex, 0).x), h = uint(textureSize(tex, 0).y), sh = uint(findMSB(w));
+    const uint texels = w * h;
+    for (uint n = 0u; n < pc.iters; ++n) {
+      const uint t = (i * pc.iters + n) & (texels - 1u);  // w and h are powers of two
+      acc += texelFetch(tex, ivec2(int(t & (w - 1u)), int(t >> sh)), 0);
     }
   } else if (KIND == 14u) {  // texelFetch at coordinates every lane shares (a table row: shade/prelude.h texelFetchUniform)
     for (uint n = 0u; n < pc.iters; ++n) acc += texelFetch(tex, ivec2(int(n & 7u), int((n >> 3u) & 7u)), 0);
