@@ -114,9 +114,15 @@ TEST(PassCounts, RasterAndComputeShapes) {
       EXPECT_EQ(p.ops[opcount::kTexNearest], scene.visMaps * double(p.invocations));  // the maps themselves
     }
     // The technique inputs' pipelines are made when the inputs are built: their first dispatch is in the pass.
-    if (p.pass == "paraboloid" || p.pass == "sh-project" || p.pass == "sh-reduce") EXPECT_EQ(p.pipelines, 1u) << p.pass;
-    if (p.pass == "mips") EXPECT_EQ(p.pipelines, 1u);  // bunny: the atlas's chain only (no material maps)
-    if (p.pass == "gbuffer" || p.pass == "shade" || p.pass == "visibility-fit") EXPECT_EQ(p.pipelines, 0u) << p.pass;
+    if (p.pass == "paraboloid" || p.pass == "sh-project" || p.pass == "sh-reduce") {
+      EXPECT_EQ(p.pipelines, 1u) << p.pass;
+    }
+    if (p.pass == "mips") {
+      EXPECT_EQ(p.pipelines, 1u);  // bunny: the atlas's chain only (no material maps)
+    }
+    if (p.pass == "gbuffer" || p.pass == "shade" || p.pass == "visibility-fit") {
+      EXPECT_EQ(p.pipelines, 0u) << p.pass;
+    }
   }
 }
 

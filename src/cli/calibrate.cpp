@@ -122,11 +122,15 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     k.run(b, &p, n);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-  auto timeRun = [&](Push p, VkSampler s, uint32_t n) {
+  // `run` once to warm up (pipeline, caches, first-touch pages), then the fastest of `timed` runs.
+  auto fastestAfterWarmUp = [](int timed, auto&& run) {
+    run();
     std::vector<double> t;
-    for (int r = 0; r < 4; ++r) t.push_back(runOnce(kernel(p.kind, p.pad), p, s, n));  // run 0 warms up, the fastest of 3
-    t.erase(t.begin());
+    for (int r = 0; r < timed; ++r) t.push_back(run());
     return fastestOf(t);
+  };
+  auto timeRun = [&](Push p, VkSampler s, uint32_t n) {
+    return fastestAfterWarmUp(3, [&] { return runOnce(kernel(p.kind, p.pad), p, s, n); });
   };
   // Launch cost: an empty dispatch of one workgroup, the fastest of many.
   Push e{kEmptyK, 0, 0, 0, 1.0f, 0.0f, 0.0f, 0.0f};
@@ -229,8 +233,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     view = big->view();
     const double missRate = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
     view = img.view();
-    d.cacheLineBytes = 64, d.cacheBytes = 0.0;
-    hostCache(d.cacheLineBytes, d.cacheBytes);
+    hostCache(d.cacheLineBytes, d.cacheBytes);  // the description's cache; its share of the large texture still hits
     const double missShare = std::max(0.0, 1.0 - d.cacheBytes / (double(B) * B * 16));
     d.textureMissSeconds = std::max(1.0 / missRate - 1.0 / d.lookupsPerSecond[model::kNearest], 0.0) / std::max(missShare, 0.5);
     // A streamed line: texelFetch along the rows of the large texture against the same on the cache-resident one,
@@ -295,16 +298,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
      // empty run's time is removed, and the two equations give the two rates.
     const emu::DeviceProfile& prof = emu::profileForDevice(ctx.deviceName());
     struct Run { double seconds, triangles, fragments; };
-    // The fastest of five timed runs after a warm-up.
-    auto fastestRun = [](auto&& run) {
-      std::vector<double> t;
-      for (int r = 0; r < 6; ++r) {
-        const double s = run();
-        if (r) t.push_back(s);
-      }
-      return fastestOf(t);
-    };
-    auto singleObject = [](Mesh mesh, uint32_t objects) {
+    auto sceneOf = [](Mesh mesh, uint32_t objects) {  // `objects` draws of the mesh, in place
       Scene sc;
       sc.meshes.push_back(std::move(mesh));
       sc.materials.emplace_back();
@@ -318,20 +312,20 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     // maps depth-only maps of size^2 seen from +y (the shadow pass), or `draws` draws of the mesh into a size^2
     // G-buffer seen from +y (the plane faces the camera; the sphere fills most of the image).
     auto depthRun = [&](Mesh mesh, uint32_t size, uint32_t maps) {
-      const Scene sc = singleObject(std::move(mesh), 1);
+      const Scene sc = sceneOf(std::move(mesh), 1);
       const std::vector<Vec3> dirs(maps, Vec3{0.0f, 1.0f, 0.0f});
       ShadowPassVk pass(ctx, sc, size);
-      const double t = fastestRun([&] { pass.run(dirs); return pass.lastMs * 1e-3; });
+      const double t = fastestAfterWarmUp(5, [&] { pass.run(dirs); return pass.lastMs * 1e-3; });
       ShadowStats st;
       shadowEmu(sc, dirs, size, prof, &st);
       return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments)};
     };
     auto gbufferRun = [&](Mesh mesh, uint32_t size, uint32_t draws) {
-      Scene sc = singleObject(std::move(mesh), draws);
+      Scene sc = sceneOf(std::move(mesh), draws);
       sc.width = sc.height = size;
       sc.camera.eye = {0.0f, 3.0f, 0.0f}, sc.camera.up = {0.0f, 0.0f, -1.0f};
       GbufferPassVk pass(ctx, sc);
-      const double t = fastestRun([&] { pass.run(); return pass.lastMs * 1e-3; });
+      const double t = fastestAfterWarmUp(5, [&] { pass.run(); return pass.lastMs * 1e-3; });
       GbufferStats st;
       gbufferEmu(sc, prof, &st);
       return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments)};
@@ -375,7 +369,6 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       d.raster[model::kGbufferRaster] = rates("G-buffer", a, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4));
     }
   }
-  hostCache(d.cacheLineBytes, d.cacheBytes);
   d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
                  std::to_string(d.cores) + " cores): microkernels of src/shaders/calibrate.comp only; cache from sysfs";
   log << std::setprecision(4);

@@ -32,6 +32,12 @@ double positive(const json& j, const std::string& key, const std::string& path, 
   if (!(d > 0.0)) fail(path, "'" + where + key + "' must be positive, got " + v.dump());
   return d;
 }
+
+double nonNegative(const json& j, const std::string& key, const std::string& path) {
+  const json& v = j.at(key);
+  if (!v.is_number() || !(v.get<double>() >= 0.0)) fail(path, "'" + key + "' must be a number >= 0");
+  return v.get<double>();
+}
 }  // namespace
 
 DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
@@ -43,7 +49,8 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   }
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
-                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "raster", "texture_miss_seconds", "texture_stream_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
+                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "raster", "texture_miss_seconds",
+                "texture_stream_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
                 "folds_specialization_constants"},
             path, "");
   DeviceDesc d;
@@ -63,8 +70,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   d.verified = j.at("verified").get<bool>();
   d.lanes = int(positive(j, "lanes", path, ""));
   d.cores = int(positive(j, "cores", path, ""));
-  if (!j.at("clock_ghz").is_number() || j.at("clock_ghz").get<double>() < 0.0) fail(path, "'clock_ghz' must be a number >= 0");
-  d.clockGHz = j.at("clock_ghz").get<double>();
+  d.clockGHz = nonNegative(j, "clock_ghz", path);
   std::set<std::string> ops(std::begin(kOpClassNames), std::end(kOpClassNames));
   checkKeys(j.at("ops_per_second"), ops, path, "ops_per_second.");
   for (int c = 0; c < kOpClasses; ++c) d.opsPerSecond[size_t(c)] = positive(j.at("ops_per_second"), kOpClassNames[c], path, "ops_per_second.");
@@ -79,18 +85,10 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   d.cacheBytes = positive(j, "cache_bytes", path, "");
   d.bandwidthBytesPerSecond = positive(j, "bandwidth_bytes_per_second", path, "");
   d.dispatchSeconds = positive(j, "dispatch_seconds", path, "");
-  if (!j.at("first_dispatch_seconds").is_number() || !(j.at("first_dispatch_seconds").get<double>() >= 0.0))
-    fail(path, "'first_dispatch_seconds' must be a number >= 0");
-  d.firstDispatchSeconds = j.at("first_dispatch_seconds").get<double>();
-  if (!j.at("workgroup_seconds").is_number() || !(j.at("workgroup_seconds").get<double>() >= 0.0))
-    fail(path, "'workgroup_seconds' must be a number >= 0");
-  d.workgroupSeconds = j.at("workgroup_seconds").get<double>();
-  if (!j.at("texture_miss_seconds").is_number() || !(j.at("texture_miss_seconds").get<double>() >= 0.0))
-    fail(path, "'texture_miss_seconds' must be a number >= 0");
-  d.textureMissSeconds = j.at("texture_miss_seconds").get<double>();
-  if (!j.at("texture_stream_seconds").is_number() || !(j.at("texture_stream_seconds").get<double>() >= 0.0))
-    fail(path, "'texture_stream_seconds' must be a number >= 0");
-  d.textureStreamSeconds = j.at("texture_stream_seconds").get<double>();
+  d.firstDispatchSeconds = nonNegative(j, "first_dispatch_seconds", path);
+  d.workgroupSeconds = nonNegative(j, "workgroup_seconds", path);
+  d.textureMissSeconds = nonNegative(j, "texture_miss_seconds", path);
+  d.textureStreamSeconds = nonNegative(j, "texture_stream_seconds", path);
   checkKeys(j.at("raster"), {std::begin(kRasterPipelineNames), std::end(kRasterPipelineNames)}, path, "raster.");
   for (int r = 0; r < kRasterPipelines; ++r) {
     const std::string where = std::string("raster.") + kRasterPipelineNames[r] + ".";

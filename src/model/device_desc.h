@@ -52,7 +52,7 @@ struct DeviceDesc {
   double textureStreamSeconds = 0.0;
   double dispatchSeconds = 0.0;          // an empty compute dispatch, submit to completion
   // A pipeline's first dispatch beyond a warm one (lavapipe compiles its machine code then): calibrate's empty kernel on
-  // a pipeline created just before, median of 9. Charged once per pipeline a pass creates (the technique inputs).
+  // a pipeline created just before, the fastest of 9. Charged once per pipeline a pass creates (the technique inputs).
   double firstDispatchSeconds = 0.0;
   // Per compute workgroup (64 invocations) beyond the work itself: calibrate's same fadd work in 4096 workgroups against
   // 64 (SwiftShader sets up each workgroup's invocations as coroutines: ~15 us; lavapipe ~0.1-0.5 us).

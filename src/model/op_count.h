@@ -64,8 +64,8 @@ inline thread_local Scheduler sched;
 // device's line size and capacity, in the order the counted build runs the lanes (8-lane vectors in the emulator's
 // tile order; one thread). tex_line counts the distinct lines of each lane's lookup, tex_miss those not in the cache;
 // tex_stream_miss the misses a stream prefetcher covers: the line next to (or before) one of the last 16 misses, as
-// when a pass reads rows in order (a host CPU's prefetcher follows such sequences; their cost is the bandwidth's, a
-// scattered miss costs its latency).
+// when a pass reads rows in order (a host CPU's prefetcher follows such sequences and fetches them ahead; a scattered
+// miss costs its latency; the model prices each from its own calibrate kernel).
 // Addresses are the texels' host addresses (each level one contiguous allocation, rows then layers, as on a device).
 struct TexCache {
   static constexpr uint32_t kWays = 16;
@@ -325,6 +325,17 @@ inline int texelAddresses(const emu::Texture& tex, const emu::SamplerDesc& s, fl
   return n;
 }
 
+/// A texelFetch's texel of each lane through the texture cache (coordinates are in range: the dialect's contract).
+template <class X, class Y, class L>
+inline void fetchLines(const emu::Texture& tex, const X& x, const Y& y, const L& layer, int level, int n) {
+  if (!counting()) return;
+  for (int i = 0; i < n; ++i) {
+    const uint64_t a = uint64_t(reinterpret_cast<uintptr_t>(tex.texelPtr(uint32_t(level), uint32_t(layer[i]), uint32_t(x[i]),
+                                                                         uint32_t(y[i]))));
+    texCache.lane(&a, 1);
+  }
+}
+
 /// Texels a linear-filtered lookup at `lod` reads on a texture of `levels` levels: 4 per level, two
 /// levels when the LOD falls strictly between levels (trilinear), one otherwise.
 inline uint64_t texelsRead(float lod, uint32_t levels) {
@@ -359,12 +370,7 @@ template <int N>
 V4<opcount::F<N>> texelFetchLanes(const Sampler2D& s, opcount::I<N> x, opcount::I<N> y, int level,
                                    opcount::I<N> layer = opcount::I<N>(0)) {
   opcount::countFetches(N);
-  if (opcount::counting())
-    for (int i = 0; i < N; ++i) {  // texelFetch coordinates are in range (the dialect's contract)
-      const uint64_t a = uint64_t(reinterpret_cast<uintptr_t>(s.tex->texelPtr(uint32_t(level), uint32_t(layer.x[i]),
-                                                                               uint32_t(x.x[i]), uint32_t(y.x[i]))));
-      opcount::texCache.lane(&a, 1);
-    }
+  opcount::fetchLines(*s.tex, x.x, y.x, layer.x, level, N);
   const V4<emu::F32<N>> r = texelFetchLanes(s, x.x, y.x, level, layer.x);
   const double t = std::max({x.t, y.t, layer.t});
   return V4<opcount::F<N>>(opcount::F<N>(r.x, t), opcount::F<N>(r.y, t), opcount::F<N>(r.z, t), opcount::F<N>(r.w, t));
@@ -373,12 +379,7 @@ template <int N>
 void uintFetchLanes(const USampler2DArray& s, opcount::I<N> x, opcount::I<N> y, opcount::I<N> layer, int level, opcount::U<N>& a,
                     opcount::U<N>& b, opcount::U<N>& c, opcount::U<N>& d) {
   opcount::countFetches(N);
-  if (opcount::counting())
-    for (int i = 0; i < N; ++i) {
-      const uint64_t a = uint64_t(reinterpret_cast<uintptr_t>(s.tex->texelPtr(uint32_t(level), uint32_t(layer.x[i]),
-                                                                               uint32_t(x.x[i]), uint32_t(y.x[i]))));
-      opcount::texCache.lane(&a, 1);
-    }
+  opcount::fetchLines(*s.tex, x.x, y.x, layer.x, level, N);
   emu::U32<N> ra, rb, rc, rd;
   uintFetchLanes(s, x.x, y.x, layer.x, level, ra, rb, rc, rd);
   a.x = ra, b.x = rb, c.x = rc, d.x = rd;
