@@ -39,6 +39,13 @@ TEST(DeviceDesc, ShippedFilesLoadAndSayWhereTheyComeFrom) {
   // pipeline's kSceneBrdfKinds is every kind instead of the scene's, lavapipe's quadruples; docs/RESULTS.md).
   EXPECT_TRUE(loadDeviceDesc(shipped("lavapipe")).foldsSpecConstants);
   EXPECT_FALSE(loadDeviceDesc(shipped("swiftshader")).foldsSpecConstants);
+  {  // shifts: SwiftShader's Subzero scalarizes vector shifts (calibrate: several times its integer add's cost); lavapipe
+     // shifts at about its add rate; the GPUs at their INT32 rate (CUDA guide, compute capability 9.0)
+    const DeviceDesc ss = loadDeviceDesc(shipped("swiftshader")), lp = loadDeviceDesc(shipped("lavapipe"));
+    EXPECT_LT(ss.opsPerSecond[shadetwin::model::kShift], 0.5 * ss.opsPerSecond[shadetwin::model::kIAlu]);
+    EXPECT_GT(lp.opsPerSecond[shadetwin::model::kShift], 0.5 * lp.opsPerSecond[shadetwin::model::kIAlu]);
+    EXPECT_EQ(h100.opsPerSecond[shadetwin::model::kShift], h100.opsPerSecond[shadetwin::model::kIAlu]);
+  }
   EXPECT_EQ(h100.cores, 132);
   EXPECT_NEAR(h100.opsPerSecond[shadetwin::model::kFAdd], 132.0 * 128.0 * 1.98e9, 1e6);
   EXPECT_NEAR(h200.bandwidthBytesPerSecond / h100.bandwidthBytesPerSecond, 4.8 / 3.35, 1e-9);
@@ -117,6 +124,13 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
   EXPECT_NE(errorOf(replaced("\"dispatch_seconds\": 1e-05", "\"dispatch_seconds\": -1")).find("'dispatch_seconds' must be positive"),
             std::string::npos);
   EXPECT_NE(errorOf("{\"device\": \"x\"}").find("dev.json: missing key"), std::string::npos);
+  {  // a description written before shifts were a class of their own: the missing rate is named
+    std::string s = good;
+    const size_t at = s.rfind(",\n    \"shift\": ");
+    ASSERT_NE(at, std::string::npos);
+    s.erase(at, s.find('\n', at + 2) - at);
+    EXPECT_NE(errorOf(s).find("ops_per_second.shift"), std::string::npos) << errorOf(s);
+  }
   try {
     loadDeviceDesc("/nonexistent/devices/x.json");
     FAIL();

@@ -34,6 +34,20 @@ TEST(Model, TicksBecomeLaneOperationsAndMaskLogicIsIntegerAlu) {
   EXPECT_EQ(scalarOps(c)[kFAdd], 90.0);
 }
 
+TEST(Model, ShiftsAreCostedAtTheirOwnRate) {
+  PassCounts c;
+  std::array<uint64_t, opcount::kKinds> t{};
+  t[opcount::kShift] = 5, t[opcount::kIAlu] = 1;
+  addTicks(c, t, 8);
+  EXPECT_EQ(scalarOps(c)[kShift], 40.0);
+  EXPECT_EQ(scalarOps(c)[kIAlu], 8.0);
+  DeviceDesc d = device(false);
+  d.opsPerSecond[kShift] = 1e8;  // SwiftShader-like: a shift 20x an add
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 40.0 / 1e8 + 8.0 / 2e9);
+  d.opsPerSecond[kShift] = d.opsPerSecond[kIAlu];  // lavapipe and the GPUs: the add rate
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 48.0 / 2e9);
+}
+
 TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   PassCounts c;
   c.dispatches = 1;

@@ -33,7 +33,7 @@ static_assert(sizeof(Push) == 32, "calibrate.comp push constants");
 
 enum Kind : uint32_t {
   kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK,
-  kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK
+  kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK, kShiftK
 };
 
 // The host's last-level cache (sysfs), for the description: line size and capacity.
@@ -61,7 +61,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
-  std::unique_ptr<vk::Kernel> kernels[2][kStreamK + 1];
+  std::unique_ptr<vk::Kernel> kernels[2][kShiftK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
       const uint32_t spec[] = {kind, dependent};
@@ -189,7 +189,12 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   auto& ops = d.opsPerSecond;
   ops[model::kFAdd] = rate(kFAddK, 32.0, nearest->handle(), 1.0e-3f, 0.0f);
   ops[model::kFMul] = rate(kFMulK, 32.0, nearest->handle(), 1.0000001f, 0.0f);
-  ops[model::kIAlu] = rate(kIAluK, 96.0, nearest->handle(), 1.5f, 0.0f);
+  ops[model::kIAlu] = rate(kIAluK, 64.0, nearest->handle(), 1.5f, 0.0f);
+  {  // shift: 1 shift + 1 integer add per chain step; the add's share at the measured ialu rate is removed
+    const double mixed = rate(kShiftK, 64.0, nearest->handle(), 1.5f, 0.0f);
+    const double perStep = 2.0 / mixed, add = 1.0 / ops[model::kIAlu];
+    ops[model::kShift] = 1.0 / std::max(perStep - add, perStep * 0.25);
+  }
   ops[model::kIMul] = rate(kIMulK, 32.0, nearest->handle(), 1.5f, 0.0f);
   {  // cvt: 2 conversions + 1 fmul per chain step; the fmul's share at the measured fmul rate is removed
     const double mixed = rate(kCvtK, 96.0, nearest->handle(), 1.0001f, 0.0f);  // ops/s of the mix
@@ -203,14 +208,15 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   }
   {  // Latencies: the same kernels on one chain (DEPENDENT). Per chain step a device vector waits for the previous
      // step, so one core's step time is cores x lanes / (steps per second). Steps: fadd, fmul, imul (squaring) one
-     // operation; ialu three dependent ones; cvt an fmul then two conversions; select a compare beside an fadd, then
-     // the select (compare latency taken as fadd's).
+     // operation; ialu two dependent ones (xor, add); shift a shift then an add; cvt an fmul then two conversions;
+     // select a compare beside an fadd, then the select (compare latency taken as fadd's).
     const double perCore = double(d.cores) * d.lanes;
     auto step = [&](uint32_t k, float c) { return perCore / rate(k, 32.0, nearest->handle(), c, 0.0f, 1); };
     auto& lat = d.latencySeconds;
     lat[model::kFAdd] = lat[model::kFCmp] = step(kFAddK, 1.0e-3f);
     lat[model::kFMul] = step(kFMulK, 1.0000001f);
-    lat[model::kIAlu] = step(kIAluK, 1.5f) / 3.0;
+    lat[model::kIAlu] = step(kIAluK, 1.5f) / 2.0;
+    lat[model::kShift] = std::max(step(kShiftK, 1.5f) - lat[model::kIAlu], 0.1 * lat[model::kIAlu]);
     lat[model::kIMul] = step(kIMulK, 1.5f);
     lat[model::kCvt] = std::max(0.5 * (step(kCvtK, 1.0001f) - lat[model::kFMul]), 0.1 * lat[model::kFMul]);
     lat[model::kSelect] = std::max(step(kSelectK, 0.75f) - lat[model::kFAdd], 0.1 * lat[model::kFAdd]);

@@ -15,6 +15,7 @@ std::array<double, kOpClasses> scalarOps(const PassCounts& c) {
   o[kIMul] = t(opcount::kIMul);
   o[kCvt] = t(opcount::kCvt);
   o[kSelect] = t(opcount::kSel);
+  o[kShift] = t(opcount::kShift);
   return o;
 }
 
@@ -27,6 +28,7 @@ OpClass classOf(opcount::Kind k) {
     case opcount::kIMul: return kIMul;
     case opcount::kCvt: return kCvt;
     case opcount::kSel: return kSelect;
+    case opcount::kShift: return kShift;
     default: return kIAlu;  // integer ALU and mask logic
   }
 }

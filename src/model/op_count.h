@@ -20,10 +20,10 @@
 namespace opcount {
 
 enum Kind {
-  kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp,
+  kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kShift,
   kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kTexLine, kTexMiss, kTexStreamMiss, kKinds
 };
-inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "tex_lookup", "texel",
+inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "shift", "tex_lookup", "texel",
                                           "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform", "tex_line",
                                           "tex_miss", "tex_stream_miss"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
@@ -219,10 +219,10 @@ struct M {
   friend Self operator|(Self a, Self b) { return Self(a.x | b.x, op(kIAlu, a.t, b.t)); }                   \
   friend Self operator^(Self a, Self b) { return Self(a.x ^ b.x, op(kIAlu, a.t, b.t)); }                   \
   friend Self operator~(Self a) { return Self(~a.x, op(kIAlu, a.t)); }                                     \
-  friend Self operator<<(Self a, Self b) { return Self(a.x << b.x, op(kIAlu, a.t, b.t)); }                 \
-  friend Self operator>>(Self a, Self b) { return Self(a.x >> b.x, op(kIAlu, a.t, b.t)); }                 \
-  friend Self operator<<(Self a, int s) { return Self(a.x << s, op(kIAlu, a.t)); }                         \
-  friend Self operator>>(Self a, int s) { return Self(a.x >> s, op(kIAlu, a.t)); }                         \
+  friend Self operator<<(Self a, Self b) { return Self(a.x << b.x, op(kShift, a.t, b.t)); }                 \
+  friend Self operator>>(Self a, Self b) { return Self(a.x >> b.x, op(kShift, a.t, b.t)); }                 \
+  friend Self operator<<(Self a, int s) { return Self(a.x << s, op(kShift, a.t)); }                         \
+  friend Self operator>>(Self a, int s) { return Self(a.x >> s, op(kShift, a.t)); }                         \
   Self& operator&=(Self b) { return *this = *this & b; }                                                   \
   Self& operator|=(Self b) { return *this = *this | b; }                                                   \
   Self& operator^=(Self b) { return *this = *this ^ b; }                                                   \

@@ -6,7 +6,7 @@
 // measuring kernel of the host, like bench_native_math.glsl.
 //   kind 0 fadd   x = x + c                       1 fadd per chain-iteration
 //   kind 1 fmul   x = x * c                       1 fmul
-//   kind 2 ialu   u = (u ^ (u >> 3)) + k          3 integer ALU (shift, xor, add)
+//   kind 2 ialu   u = (u ^ k) + k                 2 integer ALU (xor, add)
 //   kind 3 imul   u = u * k                       1 integer multiply
 //   kind 4 cvt    x = float(int(x * c))           2 conversions + 1 fmul (c just above 1: |x| grows slowly)
 //   kind 5 select x = mix(x + c, x - c, x > c)    1 compare + 1 select + 2 fadd (OpSelect)
@@ -19,9 +19,11 @@
 //                 the fadd kernel's time when the device runs every block under a mask, about nothing when it skips
 //   kind 11 branch the same, the `if` around the whole loop: a loop whose lanes are all inactive may exit at once
 //   kind 12 branch kind 10 with the block's steps in a loop of a literal 4 iterations (a compiler may unroll it)
+//   kind 16 shift  u = u + (u >> 3)               1 shift + 1 integer add (SwiftShader's Subzero scalarizes vector
+//                 shifts: a shift costs it ~6 fadds, an add or xor less than one; lavapipe shifts at the add rate)
 //   kind 15 stream texelFetch along the rows: invocation i reads texels i*iters .. (i+1)*iters - 1 of the texture in
 //                 row-major order (a prefetcher's streams; against a cache-resident texture: a streamed line's cost)
-// DEPENDENT (specialization constant 1) runs kinds 0-5 on one chain: time per step is the latency, not the issue rate.
+// DEPENDENT (specialization constant 1) runs kinds 0-5 and 16 on one chain: time per step is the latency, not the issue rate.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 64) in;
@@ -45,7 +47,8 @@ layout(push_constant) uniform Push {
 #define DECL_U(k) uint u##k = i * 2654435761u + uint(k);
 #define FADD(k) x##k = x##k + pc.c;
 #define FMUL(k) x##k = x##k * pc.c;
-#define IALU(k) u##k = (u##k ^ (u##k >> 3u)) + key;
+#define IALU(k) u##k = (u##k ^ key) + key;
+#define SHIFT(k) u##k = u##k + (u##k >> 3u);
 #define IMUL(k) u##k = u##k * key;
 #define CVT(k) x##k = float(int(x##k * pc.c));
 #define SEL(k) x##k = mix(x##k + pc.c, x##k - pc.c, x##k > pc.c);  /* OpSelect, not a branch */
@@ -80,6 +83,8 @@ void main() {
     LOOP(FMUL, FMUL)
   } else if (KIND == 2u) {
     LOOP(IALU, IALU)
+  } else if (KIND == 16u) {
+    LOOP(SHIFT, SHIFT)
   } else if (KIND == 3u) {
     LOOP(IMUL, IMULD)
   } else if (KIND == 4u) {
