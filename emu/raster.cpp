@@ -613,9 +613,16 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
     for (int ty = s.y0 / kTile; ty <= s.y1 / kTile; ++ty)
       for (int tx = s.x0 / kTile; tx <= s.x1 / kTile; ++tx) bins[size_t(ty) * size_t(tilesX) + size_t(tx)].push_back(&s);
   };
+  size_t spanning = 0;  // statistics only: set-ups whose y extent holds a pixel-centre row (sub-pixel units, centre 0)
+  auto spans = [&](const TriSetup& s) {
+    const int b = dev.raster.subPixelBits;
+    const int64_t lo = std::min({s.Y[0], s.Y[1], s.Y[2]}), hi = std::max({s.Y[0], s.Y[1], s.Y[2]});
+    const int64_t first = std::max<int64_t>(-((-lo) >> b), 0), last = std::min<int64_t>(hi >> b, int64_t(fb.height) - 1);
+    spanning += first <= last;
+  };
   for (size_t t = 0; t < in.triangles; ++t) {
-    if (ok[t]) bin(tris[t]);
-    for (auto& s : extra[t]) bin(s);
+    if (ok[t]) bin(tris[t]), spans(tris[t]);
+    for (auto& s : extra[t]) bin(s), spans(s);
   }
   std::atomic<size_t> quadCount{0}, fragCount{0};
   const bool fused = dev.raster.interpFma;
@@ -731,6 +738,7 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
     stats->trianglesCulled += culled.load();
     stats->quads += quadCount.load();
     stats->fragments += fragCount.load();
+    stats->trianglesSpanning += spanning;
   }
 }
 

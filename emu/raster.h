@@ -71,8 +71,11 @@ struct Framebuffer {
   void reset(uint32_t w, uint32_t h, int outputs, float clearDepth = 1.0f);
 };
 
+// trianglesSpanning: set-up triangles whose extent contains a pixel-centre row of the target (a software rasterizer's
+// set-up rejects the others before computing spans and interpolants: SwiftShader's costs twice per triangle as much
+// for the former; the performance model's raster term).
 struct RasterStats {
-  size_t trianglesIn = 0, trianglesClipped = 0, trianglesCulled = 0, quads = 0, fragments = 0;
+  size_t trianglesIn = 0, trianglesClipped = 0, trianglesCulled = 0, quads = 0, fragments = 0, trianglesSpanning = 0;
 };
 
 /// Rasterizes one draw into `fb` (depth test less-or-equal with depth writes), running `fs` on every

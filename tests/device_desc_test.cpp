@@ -46,6 +46,13 @@ TEST(DeviceDesc, ShippedFilesLoadAndSayWhereTheyComeFrom) {
     EXPECT_GT(lp.opsPerSecond[shadetwin::model::kShift], 0.5 * lp.opsPerSecond[shadetwin::model::kIAlu]);
     EXPECT_EQ(h100.opsPerSecond[shadetwin::model::kShift], h100.opsPerSecond[shadetwin::model::kIAlu]);
   }
+  {  // the post-transform vertex cache: simulated for SwiftShader (its source's direct-mapped 64 entries), not elsewhere
+    const DeviceDesc ss = loadDeviceDesc(shipped("swiftshader"));
+    EXPECT_EQ(ss.vertexCache.entries, 64u);
+    EXPECT_EQ(ss.vertexCache.runLanes, 4u);
+    EXPECT_EQ(h100.vertexCache.entries, 0u);
+    EXPECT_EQ(loadDeviceDesc(shipped("lavapipe")).vertexCache.entries, 0u);
+  }
   EXPECT_EQ(h100.cores, 132);
   EXPECT_NEAR(h100.opsPerSecond[shadetwin::model::kFAdd], 132.0 * 128.0 * 1.98e9, 1e6);
   EXPECT_NEAR(h200.bandwidthBytesPerSecond / h100.bandwidthBytesPerSecond, 4.8 / 3.35, 1e-9);
@@ -124,6 +131,18 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
   EXPECT_NE(errorOf(replaced("\"dispatch_seconds\": 1e-05", "\"dispatch_seconds\": -1")).find("'dispatch_seconds' must be positive"),
             std::string::npos);
   EXPECT_NE(errorOf("{\"device\": \"x\"}").find("dev.json: missing key"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"entries\": 0", "\"entries\": 48")).find("'vertex_cache.entries' must be 0 or a power of two"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"entries\": 0", "\"entries\": -1")).find("'vertex_cache.entries' must be an integer"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"entries\": 0", "\"entries\": 64")).find("'vertex_cache.batch_triangles' and"),
+            std::string::npos);
+  {
+    std::string s = good;  // the first "vertex_run_seconds" is depth_only's
+    const size_t at = s.find("\"vertex_run_seconds\": ") + 22;
+    s.replace(at, s.find('\n', at) - at, "-1");
+    EXPECT_NE(errorOf(s).find("'raster.depth_only.vertex_run_seconds' must be a number >= 0"), std::string::npos) << errorOf(s);
+  }
   {  // a description written before shifts were a class of their own: the missing rate is named
     std::string s = good;
     const size_t at = s.rfind(",\n    \"shift\": ");

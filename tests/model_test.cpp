@@ -48,6 +48,18 @@ TEST(Model, ShiftsAreCostedAtTheirOwnRate) {
   EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 48.0 / 2e9);
 }
 
+TEST(Model, VertexRunsCostTheirPipelinesRunTime) {
+  PassCounts c;
+  c.triangles = 1000, c.fragments = 0, c.vertexRuns = 600, c.rasterPipeline = kGbufferRaster;
+  DeviceDesc d = device(false);
+  const double without = predict(c, d).rasterSeconds;
+  EXPECT_DOUBLE_EQ(without, 1000.0 / 5e6);  // vertex_run_seconds 0: the runs cost nothing of their own
+  d.raster[kGbufferRaster].vertexRunSeconds = 4e-8;
+  EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, without + 600 * 4e-8);
+  d.raster[kDepthOnly].vertexRunSeconds = 1.0;  // another pipeline's cost does not apply
+  EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, without + 600 * 4e-8);
+}
+
 TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   PassCounts c;
   c.dispatches = 1;

@@ -425,3 +425,26 @@ TEST(GBufferPass, SphereNormalsAndPositions) {
 }
 
 }  // namespace
+
+TEST(Raster, SpanningTrianglesHoldAPixelCentreRow) {
+  // RasterStats::trianglesSpanning (the performance model's count of triangles a rasterizer's set-up does not reject
+  // before computing spans): a thin triangle between the pixel-centre rows 10.5 and 11.5 spans none, the same
+  // triangle moved to hold row 10.5 spans one; both are set up (not culled). Window y = (y_ndc + 1) * 16.
+  const uint32_t W = 32, H = 32;
+  auto spanning = [&](float y0w, float y1w) {
+    const float a = y0w / 16.0f - 1.0f, b = y1w / 16.0f - 1.0f;
+    const float clip[12] = {-0.5f, a, 0.5f, 1.0f, 0.5f, a, 0.5f, 1.0f, 0.0f, b, 0.5f, 1.0f};
+    const float vary[3] = {0, 0, 0};
+    const uint32_t idx[3] = {0, 1, 2};
+    emu::Framebuffer fb(W, H, 1);
+    emu::RasterStats st;
+    emu::DrawInput in{clip, vary, 1, idx, 1};
+    emu::draw(dev(), fb, in, [&](const emu::Quad&, float (*out)[4]) { for (int i = 0; i < 4; ++i) out[0][i] = 1; }, &st);
+    EXPECT_EQ(st.trianglesCulled, 0u);
+    return st.trianglesSpanning;
+  };
+  EXPECT_EQ(spanning(10.6f, 11.4f), 0u);
+  EXPECT_EQ(spanning(10.4f, 11.4f), 1u);
+  EXPECT_EQ(spanning(10.6f, 11.6f), 1u);
+  EXPECT_EQ(spanning(3.2f, 20.9f), 1u);
+}

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "emu/device_profile.h"
+#include "model/vertex_cache.h"
 #include "passes/passes_vk.h"
 #include "passes/gbuffer.h"
 #include "passes/shadow.h"
@@ -53,6 +54,7 @@ void hostCache(int& lineBytes, double& bytes) {
   }
   if (bytes <= 0.0) bytes = 1024.0 * 1024.0;
 }
+
 }  // namespace
 
 model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& log) {
@@ -186,6 +188,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   d.verified = true;
   d.cores = int(std::max(1u, std::thread::hardware_concurrency()));
   d.lanes = d.device == "swiftshader" ? 4 : name.find("256 bits") != std::string::npos ? 8 : 4;
+  // The post-transform vertex cache the model simulates, from the driver's source (DeviceDesc VertexCacheDesc):
+  // SwiftShader's direct-mapped 64 entries, batches of 128 triangles, a miss shading 4 consecutive entries. lavapipe's
+  // draw module (a hashed cache per vertex segment) is not simulated: its vertex work stays in the triangle rate.
+  if (d.device == "swiftshader") d.vertexCache = {64, 128, 4};
   auto& ops = d.opsPerSecond;
   ops[model::kFAdd] = rate(kFAddK, 32.0, nearest->handle(), 1.0e-3f, 0.0f);
   ops[model::kFMul] = rate(kFMulK, 32.0, nearest->handle(), 1.0000001f, 0.0f);
@@ -303,7 +309,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
      // same targets as each. The emulator under the device's profile counts their triangles and covered pixels; each
      // empty run's time is removed, and the two equations give the two rates.
     const emu::DeviceProfile& prof = emu::profileForDevice(ctx.deviceName());
-    struct Run { double seconds, triangles, fragments; };
+    struct Run { double seconds, triangles, fragments, vertexRuns; };
     auto sceneOf = [](Mesh mesh, uint32_t objects) {  // `objects` draws of the mesh, in place
       Scene sc;
       sc.meshes.push_back(std::move(mesh));
@@ -324,7 +330,8 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       const double t = fastestAfterWarmUp(5, [&] { pass.run(dirs); return pass.lastMs * 1e-3; });
       ShadowStats st;
       shadowEmu(sc, dirs, size, prof, &st);
-      return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments)};
+      return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
+                 double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * maps};
     };
     auto gbufferRun = [&](Mesh mesh, uint32_t size, uint32_t draws) {
       Scene sc = sceneOf(std::move(mesh), draws);
@@ -334,7 +341,8 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       const double t = fastestAfterWarmUp(5, [&] { pass.run(); return pass.lastMs * 1e-3; });
       GbufferStats st;
       gbufferEmu(sc, prof, &st);
-      return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments)};
+      return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
+                 double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * draws};
     };
     auto flat = [](Mesh m) {  // every vertex at the centre: zero-area triangles, the same bounds as a point
       for (auto& p : m.positions) p = {0.0f, 0.0f, 0.0f};
@@ -345,10 +353,16 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       m.uvs.resize(m.positions.size(), {0.0f, 0.0f});
       return m;
     };
-    // a, a0: the triangle-bound run and its empty run; b, b0: the coverage-bound run and its empty run; targetBytes:
-    // the bytes of b's targets (cleared and copied out).
-    auto rates = [&](const char* name, const Run& a, const Run& a0, const Run& b, const Run& b0, double targetBytes) {
-      const double ta = std::max(a.seconds - a0.seconds, 1e-9), tb = std::max(b.seconds - b0.seconds, 1e-9);
+    // a, a0: the triangle-bound run and its empty run; s: a's triangles with the vertices numbered in strips (the same
+    // triangles and pixels, fewer vertex routine runs where the device's vertex cache is simulated); b, b0: the
+    // coverage-bound run and its empty run; targetBytes: the bytes of b's targets (cleared and copied out).
+    auto rates = [&](const char* name, const Run& a, const Run& s, const Run& a0, const Run& b, const Run& b0,
+                     double targetBytes) {
+      // A vertex routine run: the time a and s differ by, over the runs they differ by (0 where not simulated).
+      const double sv = a.vertexRuns > s.vertexRuns + 0.1 * a.triangles
+                            ? std::max(a.seconds - s.seconds, 0.0) / (a.vertexRuns - s.vertexRuns) : 0.0;
+      const double ta = std::max(a.seconds - a0.seconds - sv * (a.vertexRuns - a0.vertexRuns), 1e-9),
+                   tb = std::max(b.seconds - b0.seconds - sv * (b.vertexRuns - b0.vertexRuns), 1e-9);
       // ta = a.triangles s_t + a.fragments s_f, the same for b: Cramer's rule, each cost kept positive.
       const double det = a.triangles * b.fragments - b.triangles * a.fragments;
       double st = (ta * b.fragments - tb * a.fragments) / det, sf = (a.triangles * tb - b.triangles * ta) / det;
@@ -357,22 +371,29 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       log << "  raster    " << name << ": " << a.triangles << " triangles + " << a.fragments << " pixels in " << ta * 1e3
           << " ms; " << b.triangles << " triangles + " << b.fragments << " pixels in " << tb * 1e3 << " ms; empty targets "
           << a0.seconds * 1e3 << " / " << b0.seconds * 1e3 << " ms: " << st * 1e9 << " ns per triangle, " << sf * 1e9
-          << " ns per pixel\n";
+          << " ns per pixel";
+      if (d.vertexCache.entries)
+        log << "; vertex runs " << a.vertexRuns << " in " << a.seconds * 1e3 << " ms vs " << s.vertexRuns << " strip-numbered in "
+            << s.seconds * 1e3 << " ms: " << sv * 1e9 << " ns per run (excluded above)";
+      log << "\n";
       // The targets' clear + copy-out per byte (the large empty run less a launch).
-      return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9)};
+      return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv};
     };
-    const Mesh sphere = makeSphere(opts.quick ? 128 : 256, opts.quick ? 64 : 128);
+    const uint32_t segs = opts.quick ? 128 : 256, rings = opts.quick ? 64 : 128;
+    const Mesh sphere = makeSphere(segs, rings), strips = makeSphereStrips(segs, rings, 8);
     {
       const uint32_t small = 32, smallMaps = opts.quick ? 4 : 16, big = opts.quick ? 512 : 2048, bigMaps = opts.quick ? 4 : 8;
       const Run a = depthRun(sphere, small, smallMaps), a0 = depthRun(flat(makePlane()), small, smallMaps);
+      const Run s = d.vertexCache.entries ? depthRun(strips, small, smallMaps) : a;
       const Run b = depthRun(makePlane(), big, bigMaps), b0 = depthRun(flat(makePlane()), big, bigMaps);
-      d.raster[model::kDepthOnly] = rates("depth-only", a, a0, b, b0, double(big) * big * 4 * bigMaps);
+      d.raster[model::kDepthOnly] = rates("depth-only", a, s, a0, b, b0, double(big) * big * 4 * bigMaps);
     }
     {
       const uint32_t small = 64, draws = opts.quick ? 4 : 16, big = opts.quick ? 512 : 1024, bigDraws = 4;
       const Run a = gbufferRun(sphere, small, draws), a0 = gbufferRun(flat(makePlane()), small, draws);
+      const Run s = d.vertexCache.entries ? gbufferRun(strips, small, draws) : a;
       const Run b = gbufferRun(makePlane(), big, bigDraws), b0 = gbufferRun(flat(makePlane()), big, bigDraws);
-      d.raster[model::kGbufferRaster] = rates("G-buffer", a, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4));
+      d.raster[model::kGbufferRaster] = rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4));
     }
   }
   d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +

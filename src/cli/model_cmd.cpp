@@ -147,7 +147,8 @@ std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, co
         << c.ops[opcount::kTexStreamMiss] / inv << "); "
         << c.invocations << " invocations, " << c.dispatches
         << (c.triangles ? " draws" : " dispatches");
-    if (c.triangles) log << ", " << c.triangles << " triangles, " << c.fragments << " fragments, " << c.helperLanes << " helper lanes";
+    if (c.triangles) log << ", " << c.triangles << " triangles, " << c.fragments << " fragments, " << c.helperLanes << " helper lanes, "
+                         << c.vertexRuns << " vertex runs, " << c.spanningTriangles << " triangles spanning a pixel row";
     log << "\n";
     totalP += r.predictedMs;
     rows.push_back(r);

@@ -33,9 +33,9 @@ double positive(const json& j, const std::string& key, const std::string& path, 
   return d;
 }
 
-double nonNegative(const json& j, const std::string& key, const std::string& path) {
+double nonNegative(const json& j, const std::string& key, const std::string& path, const std::string& where = "") {
   const json& v = j.at(key);
-  if (!v.is_number() || !(v.get<double>() >= 0.0)) fail(path, "'" + key + "' must be a number >= 0");
+  if (!v.is_number() || !(v.get<double>() >= 0.0)) fail(path, "'" + where + key + "' must be a number >= 0");
   return v.get<double>();
 }
 }  // namespace
@@ -51,7 +51,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
                 "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "raster", "texture_miss_seconds",
                 "texture_stream_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
-                "folds_specialization_constants"},
+                "folds_specialization_constants", "vertex_cache"},
             path, "");
   DeviceDesc d;
   for (const char* k : {"device", "name", "provenance"})
@@ -93,9 +93,25 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   for (int r = 0; r < kRasterPipelines; ++r) {
     const std::string where = std::string("raster.") + kRasterPipelineNames[r] + ".";
     const json& x = j.at("raster").at(kRasterPipelineNames[r]);
-    checkKeys(x, {"triangles_per_second", "fragments_per_second", "target_bytes_per_second"}, path, where);
+    checkKeys(x, {"triangles_per_second", "fragments_per_second", "target_bytes_per_second", "vertex_run_seconds"}, path, where);
     d.raster[size_t(r)] = {positive(x, "triangles_per_second", path, where), positive(x, "fragments_per_second", path, where),
-                           positive(x, "target_bytes_per_second", path, where)};
+                           positive(x, "target_bytes_per_second", path, where),
+                           nonNegative(x, "vertex_run_seconds", path, where)};
+  }
+  {
+    const json& v = j.at("vertex_cache");
+    checkKeys(v, {"entries", "batch_triangles", "run_lanes"}, path, "vertex_cache.");
+    auto count = [&](const char* k) {
+      const json& x = v.at(k);
+      if (!x.is_number_unsigned() || x.get<uint64_t>() > (1u << 20))
+        fail(path, std::string("'vertex_cache.") + k + "' must be an integer in [0, 2^20]");
+      return uint32_t(x.get<uint64_t>());
+    };
+    d.vertexCache = {count("entries"), count("batch_triangles"), count("run_lanes")};
+    if (d.vertexCache.entries && (d.vertexCache.entries & (d.vertexCache.entries - 1)))
+      fail(path, "'vertex_cache.entries' must be 0 or a power of two (a direct-mapped cache indexed by index mod entries)");
+    if (d.vertexCache.entries && (!d.vertexCache.batchTriangles || !d.vertexCache.runLanes))
+      fail(path, "'vertex_cache.batch_triangles' and 'vertex_cache.run_lanes' must be positive when entries is");
   }
   d.windowOps = positive(j, "window_ops", path, "");
   return d;
@@ -118,7 +134,8 @@ std::string deviceDescJson(const DeviceDesc& d) {
   for (int r = 0; r < kRasterPipelines; ++r)
     raster[kRasterPipelineNames[r]] = {{"triangles_per_second", d.raster[size_t(r)].trianglesPerSecond},
                                        {"fragments_per_second", d.raster[size_t(r)].fragmentsPerSecond},
-                                       {"target_bytes_per_second", d.raster[size_t(r)].targetBytesPerSecond}};
+                                       {"target_bytes_per_second", d.raster[size_t(r)].targetBytesPerSecond},
+                                       {"vertex_run_seconds", d.raster[size_t(r)].vertexRunSeconds}};
   json j = {{"device", d.device},
             {"name", d.name},
             {"verified", d.verified},
@@ -141,7 +158,9 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"latency_seconds", latency},
             {"window_ops", d.windowOps},
             {"executes_every_block", d.executesEveryBlock},
-            {"folds_specialization_constants", d.foldsSpecConstants}};
+            {"folds_specialization_constants", d.foldsSpecConstants},
+            {"vertex_cache", {{"entries", d.vertexCache.entries}, {"batch_triangles", d.vertexCache.batchTriangles},
+                              {"run_lanes", d.vertexCache.runLanes}}}};
   return j.dump(2) + "\n";
 }
 

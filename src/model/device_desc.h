@@ -4,6 +4,7 @@
 // measured on one.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <string>
 
 namespace shadetwin::model {
@@ -27,8 +28,21 @@ inline constexpr const char* kRasterPipelineNames[kRasterPipelines] = {"depth_on
 /// Fixed-function rasterization through one pipeline: triangles (set-up, clipping, binning) and covered pixels
 /// (coverage, depth test and write, the targets' writes) per second; the shaders' own operations are counted with the
 /// ALU classes. Target bytes: the render targets cleared and copied out, per second.
+// vertexRunSeconds: one run of the vertex routine the device's post-transform vertex cache starts on a miss
+// (VertexCacheDesc; 0 where the cache is not simulated and vertex work is in the triangle rate).
 struct RasterRates {
   double trianglesPerSecond = 0.0, fragmentsPerSecond = 0.0, targetBytesPerSecond = 0.0;
+  double vertexRunSeconds = 0.0;
+};
+
+/// A driver's post-transform vertex cache, as the model simulates it over each draw's index stream
+/// (model/vertex_cache.h): `entries` direct-mapped slots (index mod entries), cleared every `batchTriangles` triangles
+/// (the batch a worker takes), and a miss running the vertex routine on `runLanes` consecutive index-stream entries
+/// at once (all written to the cache). entries 0: not simulated (every vertex once; its work in the triangle rate).
+/// SwiftShader 147 (its source: Device/VertexProcessor.hpp, a direct-mapped VertexCache of 64; Device/Renderer.cpp,
+/// batches of 128 primitives; Pipeline/VertexRoutine.cpp, a miss shades a SIMD width of 4 consecutive batch entries).
+struct VertexCacheDesc {
+  uint32_t entries = 0, batchTriangles = 0, runLanes = 1;
 };
 
 struct DeviceDesc {
@@ -61,6 +75,7 @@ struct DeviceDesc {
   double workgroupSeconds = 0.0;
   // Per raster pipeline (calibrate: generated geometry through the shadow pass's and the G-buffer pass's pipelines).
   std::array<RasterRates, kRasterPipelines> raster{};
+  VertexCacheDesc vertexCache{};
   // How the units' times combine: false (software devices: the same cores run arithmetic, texture filtering and
   // memory traffic one after another, so the times add), true (GPUs: separate units overlap, the slowest bounds).
   bool unitsOverlap = false;

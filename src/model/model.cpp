@@ -47,6 +47,7 @@ CoreModel coreModel(const DeviceDesc& d) {
   m.window = uint32_t(std::max(1.0, std::round(d.windowOps)));
   m.cacheLineBytes = uint32_t(std::max(1, d.cacheLineBytes));
   m.cacheBytes = d.cacheBytes;
+  m.vertexCache = d.vertexCache;
   return m;
 }
 
@@ -65,7 +66,7 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   p.memorySeconds = double(c.bytesRead + c.bytesWritten) / d.bandwidthBytesPerSecond;
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
   p.rasterSeconds = double(c.triangles) / r.trianglesPerSecond + double(c.fragments) / r.fragmentsPerSecond +
-                    double(c.attachmentBytes) / r.targetBytesPerSecond;
+                    double(c.attachmentBytes) / r.targetBytesPerSecond + double(c.vertexRuns) * r.vertexRunSeconds;
   const uint64_t groups = c.triangles ? 0 : c.workgroups ? c.workgroups : (c.invocations + 63) / 64;
   p.launchSeconds = double(std::max<uint64_t>(c.dispatches, 1)) * d.dispatchSeconds +
                     double(c.pipelines) * d.firstDispatchSeconds + double(groups) * d.workgroupSeconds;

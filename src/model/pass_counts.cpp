@@ -12,6 +12,7 @@
 #include "inputs/sh_irradiance.h"
 #include "inputs/shade_inputs.h"
 #include "inputs/visibility.h"
+#include "model/vertex_cache.h"
 #include "passes/gbuffer.h"
 #include "passes/mips.h"
 #include "passes/shadow.h"
@@ -40,6 +41,7 @@ struct Checker {
 void addRaster(PassCounts& c, const emu::RasterStats& r) {
   c.triangles += r.trianglesIn;
   c.fragments += r.fragments;
+  c.spanningTriangles += r.trianglesSpanning;
   c.helperLanes += 4 * r.quads - r.fragments;
 }
 
@@ -116,6 +118,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
   for (const Object& o : scene.objects) {
     const Mesh& m = scene.meshes[o.mesh];
     gb.invocations += m.positions.size();
+    gb.vertexRuns += vertexCacheRuns(m.indices, core.vertexCache);
     gb.bytesRead += m.positions.size() * sizeof(VertexGpu) + m.indices.size() * 4;
   }
   gb.invocations += 4 * gs.raster.quads;
@@ -213,6 +216,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     for (const Object& o : scene.objects) {
       const Mesh& m = scene.meshes[o.mesh];
       sp.invocations += m.positions.size() * v.directions.size();
+      sp.vertexRuns += vertexCacheRuns(m.indices, core.vertexCache) * v.directions.size();
       sp.bytesRead += (m.positions.size() * sizeof(VertexGpu) + m.indices.size() * 4) * v.directions.size();
     }
     sp.helperLanes = 0;  // depth only: no fragment shader, no quads run

@@ -32,6 +32,8 @@ struct PassCounts {
   uint64_t attachmentBytes = 0;  // raster passes: render-target bytes cleared and copied out
   uint64_t triangles = 0, fragments = 0, helperLanes = 0;  // raster passes: triangles in, covered pixels, quad helpers
   RasterPipeline rasterPipeline = kDepthOnly;              // raster passes: whose rates they run at
+  uint64_t spanningTriangles = 0;  // raster passes: triangles whose extent holds a pixel-centre row (emu RasterStats)
+  uint64_t vertexRuns = 0;  // raster passes: vertex routine runs the device's vertex cache starts (model/vertex_cache.h)
   // One core's time for the pass's 8-lane operations on the device's core model (CoreModel on), 0 when not scheduled
   // (GPUs; passes counted one lane at a time: vertex and fragment stages, the SH reduction).
   double scheduledSeconds = 0;
@@ -49,6 +51,7 @@ struct CoreModel {
   // given, lines are counted and no miss is).
   uint32_t cacheLineBytes = 64;
   double cacheBytes = 0.0;
+  VertexCacheDesc vertexCache{};  // the device's post-transform vertex cache (entries 0: not simulated)
 };
 
 /// Runs `f` on the calling thread alone (a TBB arena of one) with the counters cleared; returns its ticks.

@@ -65,6 +65,28 @@ Mesh makeSphere(uint32_t segments, uint32_t rings) {
   return m;
 }
 
+Mesh makeSphereStrips(uint32_t segments, uint32_t rings, uint32_t w) {
+  const Mesh s = makeSphere(segments, rings);
+  Mesh m;
+  m.name = "sphere-strips";
+  for (uint32_t s0 = 0; s0 < segments; s0 += w) {
+    const uint32_t cols = std::min(w, segments - s0), base = uint32_t(m.positions.size());
+    for (uint32_t r = 0; r <= rings; ++r)
+      for (uint32_t c = 0; c <= cols; ++c) {
+        const uint32_t v = r * (segments + 1) + s0 + c;
+        m.positions.push_back(s.positions[v]), m.normals.push_back(s.normals[v]);
+        m.tangents.push_back(s.tangents[v]), m.uvs.push_back(s.uvs[v]);
+      }
+    for (uint32_t r = 0; r < rings; ++r)
+      for (uint32_t c = 0; c < cols; ++c) {
+        const uint32_t a = base + r * (cols + 1) + c, b = a + cols + 1;
+        if (r != 0) m.indices.insert(m.indices.end(), {a, b, a + 1});
+        if (r + 1 != rings) m.indices.insert(m.indices.end(), {a + 1, b, b + 1});
+      }
+  }
+  return m;
+}
+
 Mesh makePlane() {
   Mesh m;
   m.name = "plane";

@@ -23,6 +23,10 @@ struct Mesh {
 };
 
 Mesh makeSphere(uint32_t segments = 96, uint32_t rings = 48);      // radius 1, centred at 0
+/// makeSphere's triangles strip by strip of `w` columns, each strip's vertices numbered as their own (rings + 1) x
+/// (w + 1) block (shared columns duplicated): the same triangles and pixels, a triangle's vertices w + 1 apart instead
+/// of segments + 1 (what a small direct-mapped vertex cache holds: calibrate's vertex-run measurement).
+Mesh makeSphereStrips(uint32_t segments, uint32_t rings, uint32_t w);
 Mesh makePlane();                                                   // [-1,1]^2 in y = 0, normal +y
 Mesh makeTorus(float major = 1.0f, float minor = 0.35f, uint32_t segments = 96, uint32_t sides = 48);
 
