@@ -358,17 +358,21 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     // coverage-bound run and its empty run; targetBytes: the bytes of b's targets (cleared and copied out).
     auto rates = [&](const char* name, const Run& a, const Run& s, const Run& a0, const Run& b, const Run& b0,
                      double targetBytes) {
-      // A vertex routine run: the time a and s differ by, over the runs they differ by (0 where not simulated).
-      const double sv = a.vertexRuns > s.vertexRuns + 0.1 * a.triangles
-                            ? std::max(a.seconds - s.seconds, 0.0) / (a.vertexRuns - s.vertexRuns) : 0.0;
-      const double ta = std::max(a.seconds - a0.seconds - sv * (a.vertexRuns - a0.vertexRuns), 1e-9),
+      // A vertex routine run: the time a and s differ by, over the runs they differ by (0 where not simulated). The
+      // triangle-bound equation below uses s, whose runs are the fewer (a noisy a - s moves it least), and the runs
+      // never take more than three quarters of s's time (a contended run of a once left no time for the triangles).
+      const double tsRaw = s.seconds - a0.seconds;
+      double sv = a.vertexRuns > s.vertexRuns + 0.1 * a.triangles
+                      ? std::max(a.seconds - s.seconds, 0.0) / (a.vertexRuns - s.vertexRuns) : 0.0;
+      sv = std::min(sv, 0.75 * std::max(tsRaw, 0.0) / std::max(s.vertexRuns - a0.vertexRuns, 1.0));
+      const double ta = std::max(tsRaw - sv * (s.vertexRuns - a0.vertexRuns), 1e-9),
                    tb = std::max(b.seconds - b0.seconds - sv * (b.vertexRuns - b0.vertexRuns), 1e-9);
-      // ta = a.triangles s_t + a.fragments s_f, the same for b: Cramer's rule, each cost kept positive.
-      const double det = a.triangles * b.fragments - b.triangles * a.fragments;
-      double st = (ta * b.fragments - tb * a.fragments) / det, sf = (a.triangles * tb - b.triangles * ta) / det;
-      if (!(st > 0)) st = ta / a.triangles;
+      // ta = s.triangles s_t + s.fragments s_f, the same for b: Cramer's rule, each cost kept positive.
+      const double det = s.triangles * b.fragments - b.triangles * s.fragments;
+      double st = (ta * b.fragments - tb * s.fragments) / det, sf = (s.triangles * tb - b.triangles * ta) / det;
+      if (!(st > 0)) st = ta / s.triangles;
       if (!(sf > 0)) sf = tb / b.fragments;
-      log << "  raster    " << name << ": " << a.triangles << " triangles + " << a.fragments << " pixels in " << ta * 1e3
+      log << "  raster    " << name << ": " << s.triangles << " triangles + " << s.fragments << " pixels in " << ta * 1e3
           << " ms; " << b.triangles << " triangles + " << b.fragments << " pixels in " << tb * 1e3 << " ms; empty targets "
           << a0.seconds * 1e3 << " / " << b0.seconds * 1e3 << " ms: " << st * 1e9 << " ns per triangle, " << sf * 1e9
           << " ns per pixel";
