@@ -72,8 +72,8 @@ struct Framebuffer {
 };
 
 // trianglesSpanning: set-up triangles whose extent contains a pixel-centre row of the target (a software rasterizer's
-// set-up rejects the others before computing spans and interpolants: SwiftShader's costs twice per triangle as much
-// for the former; the performance model's raster term).
+// set-up may reject the others before computing spans and interpolants; the performance model prints it, a lead for a
+// set-up term of its raster cost, not used yet).
 struct RasterStats {
   size_t trianglesIn = 0, trianglesClipped = 0, trianglesCulled = 0, quads = 0, fragments = 0, trianglesSpanning = 0;
 };

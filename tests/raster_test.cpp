@@ -17,6 +17,16 @@ namespace {
 
 const emu::DeviceProfile& dev() { return emu::lavapipeProfile(); }
 
+// One triangle (clip-space xyzw x 3) into `fb`, every covered pixel's single output 1; its raster statistics.
+emu::RasterStats drawOneTriangle(emu::Framebuffer& fb, const float clip[12]) {
+  const float vary[3] = {0, 0, 0};
+  const uint32_t idx[3] = {0, 1, 2};
+  emu::RasterStats st;
+  emu::DrawInput in{clip, vary, 1, idx, 1};
+  emu::draw(dev(), fb, in, [&](const emu::Quad&, float (*out)[4]) { for (int i = 0; i < 4; ++i) out[0][i] = 1; }, &st);
+  return st;
+}
+
 // Window position (x, y in pixels, depth z) -> clip coordinates with w = 1 for a W x H target.
 void clipOf(float x, float y, float z, uint32_t W, uint32_t H, float* c) {
   c[0] = x / (W * 0.5f) - 1.0f;
@@ -232,12 +242,8 @@ TEST(Raster, NearPlaneClipping) {
   // A triangle crossing z = 0 is clipped, not dropped, and nothing behind the camera is drawn.
   const uint32_t W = 32, H = 32;
   const float clip[12] = {-0.5f, -0.5f, -0.5f, 1.0f, 0.5f, -0.5f, 0.5f, 1.0f, 0.0f, 0.5f, 0.5f, 1.0f};
-  const float vary[3] = {0, 0, 0};
-  const uint32_t idx[3] = {0, 1, 2};
   emu::Framebuffer fb(W, H, 1);
-  emu::RasterStats st;
-  emu::DrawInput in{clip, vary, 1, idx, 1};
-  emu::draw(dev(), fb, in, [&](const emu::Quad&, float (*out)[4]) { for (int i = 0; i < 4; ++i) out[0][i] = 1; }, &st);
+  const emu::RasterStats st = drawOneTriangle(fb, clip);
   EXPECT_EQ(st.trianglesClipped, 1u);
   EXPECT_GT(st.fragments, 20u);
   for (float d : fb.depth) EXPECT_GE(d, 0.0f);
@@ -424,8 +430,6 @@ TEST(GBufferPass, SphereNormalsAndPositions) {
   EXPECT_GT(checked, 3000);
 }
 
-}  // namespace
-
 TEST(Raster, SpanningTrianglesHoldAPixelCentreRow) {
   // RasterStats::trianglesSpanning (the performance model's count of triangles a rasterizer's set-up does not reject
   // before computing spans): a thin triangle between the pixel-centre rows 10.5 and 11.5 spans none, the same
@@ -434,12 +438,8 @@ TEST(Raster, SpanningTrianglesHoldAPixelCentreRow) {
   auto spanning = [&](float y0w, float y1w) {
     const float a = y0w / 16.0f - 1.0f, b = y1w / 16.0f - 1.0f;
     const float clip[12] = {-0.5f, a, 0.5f, 1.0f, 0.5f, a, 0.5f, 1.0f, 0.0f, b, 0.5f, 1.0f};
-    const float vary[3] = {0, 0, 0};
-    const uint32_t idx[3] = {0, 1, 2};
     emu::Framebuffer fb(W, H, 1);
-    emu::RasterStats st;
-    emu::DrawInput in{clip, vary, 1, idx, 1};
-    emu::draw(dev(), fb, in, [&](const emu::Quad&, float (*out)[4]) { for (int i = 0; i < 4; ++i) out[0][i] = 1; }, &st);
+    const emu::RasterStats st = drawOneTriangle(fb, clip);
     EXPECT_EQ(st.trianglesCulled, 0u);
     return st.trianglesSpanning;
   };
@@ -448,3 +448,6 @@ TEST(Raster, SpanningTrianglesHoldAPixelCentreRow) {
   EXPECT_EQ(spanning(10.6f, 11.6f), 1u);
   EXPECT_EQ(spanning(3.2f, 20.9f), 1u);
 }
+
+}  // namespace
+

@@ -54,7 +54,6 @@ void hostCache(int& lineBytes, double& bytes) {
   }
   if (bytes <= 0.0) bytes = 1024.0 * 1024.0;
 }
-
 }  // namespace
 
 model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& log) {

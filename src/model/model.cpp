@@ -5,20 +5,6 @@
 
 namespace shadetwin::model {
 
-std::array<double, kOpClasses> scalarOps(const PassCounts& c) {
-  std::array<double, kOpClasses> o{};
-  auto t = [&](opcount::Kind k) { return c.ops[size_t(k)]; };
-  o[kFAdd] = t(opcount::kFAdd);
-  o[kFMul] = t(opcount::kFMul);
-  o[kFCmp] = t(opcount::kFCmp);
-  o[kIAlu] = t(opcount::kIAlu) + t(opcount::kMaskOp);
-  o[kIMul] = t(opcount::kIMul);
-  o[kCvt] = t(opcount::kCvt);
-  o[kSelect] = t(opcount::kSel);
-  o[kShift] = t(opcount::kShift);
-  return o;
-}
-
 namespace {
 OpClass classOf(opcount::Kind k) {
   switch (k) {
@@ -33,6 +19,12 @@ OpClass classOf(opcount::Kind k) {
   }
 }
 }  // namespace
+
+std::array<double, kOpClasses> scalarOps(const PassCounts& c) {
+  std::array<double, kOpClasses> o{};
+  for (int k = 0; k < opcount::kTexLookup; ++k) o[size_t(classOf(opcount::Kind(k)))] += c.ops[size_t(k)];
+  return o;
+}
 
 CoreModel coreModel(const DeviceDesc& d) {
   CoreModel m;

@@ -19,11 +19,12 @@
 //                 the fadd kernel's time when the device runs every block under a mask, about nothing when it skips
 //   kind 11 branch the same, the `if` around the whole loop: a loop whose lanes are all inactive may exit at once
 //   kind 12 branch kind 10 with the block's steps in a loop of a literal 4 iterations (a compiler may unroll it)
-//   kind 16 shift  u = u + (u >> 3)               1 shift + 1 integer add (SwiftShader's Subzero scalarizes vector
-//                 shifts: a shift costs it ~6 fadds, an add or xor less than one; lavapipe shifts at the add rate)
 //   kind 15 stream texelFetch along the rows: invocation i reads texels i*iters .. (i+1)*iters - 1 of the texture in
 //                 row-major order (a prefetcher's streams; against a cache-resident texture: a streamed line's cost)
-// DEPENDENT (specialization constant 1) runs kinds 0-5 and 16 on one chain: time per step is the latency, not the issue rate.
+//   kind 16 shift  u = u + (u >> 3)               1 shift + 1 integer add (SwiftShader's Subzero scalarizes vector
+//                 shifts: a shift costs it ~6 fadds, an add or xor less than one; lavapipe shifts at the add rate)
+// DEPENDENT (specialization constant 1) runs kinds 0-5 and 16 on one chain: time per step is the latency, not the
+// issue rate.
 #extension GL_GOOGLE_include_directive : require
 
 layout(local_size_x = 64) in;
