@@ -159,7 +159,9 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   // the empty kernel on a pipeline created just before, less its own second dispatch right after, the median of 9
   // such pairs. Paired, so a host that is slower for a while (SwiftShader's workers after a 0.2 s compile, another
   // process) moves both runs of a pair: the fastest first run less the fastest warm dispatch read 410 us in one
-  // SwiftShader calibration and 125 us in the next. lavapipe compiles a pipeline's machine code at its first dispatch.
+  // SwiftShader calibration and 125 us in the next. A median, not fastestOf: contention can slow either run of a pair,
+  // so a difference's noise is two-sided and its minimum is biased low. lavapipe compiles a pipeline's machine code at
+  // its first dispatch.
   double firstDispatch = 0.0;
   {
     std::vector<double> extra;
