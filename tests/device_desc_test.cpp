@@ -46,6 +46,14 @@ TEST(DeviceDesc, ShippedFilesLoadAndSayWhereTheyComeFrom) {
     EXPECT_GT(lp.opsPerSecond[shadetwin::model::kShift], 0.5 * lp.opsPerSecond[shadetwin::model::kIAlu]);
     EXPECT_EQ(h100.opsPerSecond[shadetwin::model::kShift], h100.opsPerSecond[shadetwin::model::kIAlu]);
   }
+  {  // integer selects: SwiftShader runs one (after its compare) at several times its integer add's cost (calibrate
+     // kernel 18: ~0.15x the ialu rate), lavapipe beside its other work at no less than its add rate; the GPUs at their
+     // compare/select rate
+    const DeviceDesc ss = loadDeviceDesc(shipped("swiftshader")), lp = loadDeviceDesc(shipped("lavapipe"));
+    EXPECT_LT(ss.opsPerSecond[shadetwin::model::kISelect], 0.5 * ss.opsPerSecond[shadetwin::model::kIAlu]);
+    EXPECT_GT(lp.opsPerSecond[shadetwin::model::kISelect], 0.5 * lp.opsPerSecond[shadetwin::model::kIAlu]);
+    EXPECT_EQ(h100.opsPerSecond[shadetwin::model::kISelect], h100.opsPerSecond[shadetwin::model::kSelect]);
+  }
   {  // the post-transform vertex cache: simulated for SwiftShader (its source's direct-mapped 64 entries), not elsewhere
     const DeviceDesc ss = loadDeviceDesc(shipped("swiftshader"));
     EXPECT_EQ(ss.vertexCache.entries, 64u);

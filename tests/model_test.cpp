@@ -114,3 +114,17 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
 }
 
 }  // namespace
+
+TEST(Model, IntegerComparesAndSelectsAreCostedAtTheirOwnRates) {
+  PassCounts c;
+  std::array<uint64_t, opcount::kKinds> t{};
+  t[opcount::kICmp] = 3, t[opcount::kISel] = 2, t[opcount::kSel] = 1, t[opcount::kFCmp] = 1;
+  addTicks(c, t, 8);
+  EXPECT_EQ(scalarOps(c)[kICmp], 24.0);
+  EXPECT_EQ(scalarOps(c)[kISelect], 16.0);
+  EXPECT_EQ(scalarOps(c)[kSelect], 8.0);
+  EXPECT_EQ(scalarOps(c)[kIAlu], 0.0);
+  DeviceDesc d = device(false);
+  d.opsPerSecond[kICmp] = 1e8, d.opsPerSecond[kISelect] = 5e7;  // SwiftShader-like: far below the float pair
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 24.0 / 1e8 + 16.0 / 5e7 + 8.0 / d.opsPerSecond[kSelect] + 8.0 / d.opsPerSecond[kFCmp]);
+}

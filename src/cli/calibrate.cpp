@@ -25,6 +25,7 @@ namespace shadetwin {
 
 namespace {
 #include "calibrate_comp.inc"
+#include "calibrate_group_comp.inc"
 
 struct Push {
   uint32_t kind, iters, count, pad;
@@ -34,8 +35,10 @@ static_assert(sizeof(Push) == 32, "calibrate.comp push constants");
 
 enum Kind : uint32_t {
   kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK,
-  kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK, kShiftK
+  kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK, kShiftK, kICmpK, kISelectK
 };
+// Chain steps per iteration of the arithmetic kernels (calibrate.comp STEPS_INDEP, STEPS_DEP).
+constexpr double kSteps = 128.0;
 
 // The host's last-level cache (sysfs), for the description: line size and capacity.
 void hostCache(int& lineBytes, double& bytes) {
@@ -62,7 +65,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
-  std::unique_ptr<vk::Kernel> kernels[2][kShiftK + 1];
+  std::unique_ptr<vk::Kernel> kernels[2][kISelectK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
       const uint32_t spec[] = {kind, dependent};
@@ -139,21 +142,29 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   for (int r = 0; r < 15; ++r) empties.push_back(timeRun(e, nearest->handle(), 64));
   const double dispatch = fastestOf(empties);
   double perGroup = 0.0;  // every rate below removes the workgroups' setup from its time
-  // Per workgroup of 64 invocations, while working: the same fadd work as 4096 workgroups of I iterations and as 64
-  // workgroups of 64 I iterations (a device's per-group setup, beyond what overlaps with work).
+  // Per workgroup of 64 invocations: a kernel that does nothing, in a module of its own (calibrate_group.comp), over
+  // 4096 workgroups against 64, the fastest of five each. SwiftShader's setup of a workgroup grows with the module even
+  // where none of its code runs (probes, docs/RESULTS.md session 22): the fadd kernel in calibrate.comp's module read
+  // 16 us per workgroup at 32 steps per iteration and 36 us at 128, its empty kind 33 us; the part that grows with the
+  // module is not modelled yet.
   {
-    const uint32_t I = opts.quick ? 8u : 64u;
-    Push p{kFAddK, I, 0, 0, 1.0e-3f, 0.0f, 0.0f, 0.0f};
+    const VkDescriptorType one[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    vk::Kernel group(ctx, vk::Stage::Compute, kSpv_calibrate_group_comp, one, sizeof(Push));
+    const vk::Binding b[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dst.handle()}};
+    auto groups = [&](uint32_t n) {
+      return fastestAfterWarmUp(3, [&] {
+        Push p = e;
+        p.count = 64u * n;
+        const auto t0 = std::chrono::steady_clock::now();
+        group.run(b, &p, 64u * n);
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      });
+    };
     std::vector<double> many, few;
-    for (int r = 0; r < 5; ++r) {
-      p.iters = I;
-      many.push_back(timeRun(p, nearest->handle(), 64u * 4096u));
-      p.iters = 64u * I;
-      few.push_back(timeRun(p, nearest->handle(), 64u * 64u));
-    }
+    for (int r = 0; r < 5; ++r) many.push_back(groups(4096)), few.push_back(groups(64));
     perGroup = std::max(fastestOf(many) - fastestOf(few), 0.0) / 4032.0;
-    log << "  workgroup " << perGroup * 1e9 << " ns per workgroup of 64 (the same work in 4096 workgroups vs 64: "
-        << fastestOf(many) * 1e3 << " / " << fastestOf(few) * 1e3 << " ms)\n";
+    log << "  workgroup " << perGroup * 1e9 << " ns per workgroup of 64 (an empty kernel in a module of its own, 4096 "
+        << "workgroups vs 64: " << fastestOf(many) * 1e3 << " / " << fastestOf(few) * 1e3 << " ms)\n";
   }
   // A pipeline's first dispatch (the Vulkan build creates the technique inputs' pipelines each time it builds them):
   // the empty kernel on a pipeline created just before, less its own second dispatch right after, the median of 9
@@ -198,31 +209,40 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   // draw module (a hashed cache per vertex segment) is not simulated: its vertex work stays in the triangle rate.
   if (d.device == "swiftshader") d.vertexCache = {64, 128, 4};
   auto& ops = d.opsPerSecond;
-  ops[model::kFAdd] = rate(kFAddK, 32.0, nearest->handle(), 1.0e-3f, 0.0f);
-  ops[model::kFMul] = rate(kFMulK, 32.0, nearest->handle(), 1.0000001f, 0.0f);
-  ops[model::kIAlu] = rate(kIAluK, 64.0, nearest->handle(), 1.5f, 0.0f);
+  ops[model::kFAdd] = rate(kFAddK, kSteps, nearest->handle(), 1.0e-3f, 0.0f);
+  ops[model::kFMul] = rate(kFMulK, kSteps, nearest->handle(), 1.0000001f, 0.0f);
+  ops[model::kIAlu] = rate(kIAluK, 2.0 * kSteps, nearest->handle(), 1.5f, 0.0f);
   {  // shift: 1 shift + 1 integer add per chain step; the add's share at the measured ialu rate is removed
-    const double mixed = rate(kShiftK, 64.0, nearest->handle(), 1.5f, 0.0f);
+    const double mixed = rate(kShiftK, 2.0 * kSteps, nearest->handle(), 1.5f, 0.0f);
     const double perStep = 2.0 / mixed, add = 1.0 / ops[model::kIAlu];
     ops[model::kShift] = 1.0 / std::max(perStep - add, perStep * 0.25);
   }
-  ops[model::kIMul] = rate(kIMulK, 32.0, nearest->handle(), 1.5f, 0.0f);
+  ops[model::kIMul] = rate(kIMulK, kSteps, nearest->handle(), 1.5f, 0.0f);
   {  // cvt: 2 conversions + 1 fmul per chain step; the fmul's share at the measured fmul rate is removed
-    const double mixed = rate(kCvtK, 96.0, nearest->handle(), 1.0001f, 0.0f);  // ops/s of the mix
+    const double mixed = rate(kCvtK, 3.0 * kSteps, nearest->handle(), 1.0001f, 0.0f);  // ops/s of the mix
     const double perStep = 3.0 / mixed, alu = 1.0 / ops[model::kFMul];
     ops[model::kCvt] = 2.0 / std::max(perStep - alu, perStep * 0.25);
   }
   {  // select + compare: 1 + 1 per chain step beside 2 fadd, whose share is removed; the two share the rest
-    const double mixed = rate(kSelectK, 128.0, nearest->handle(), 0.75f, 0.0f);
+    const double mixed = rate(kSelectK, 4.0 * kSteps, nearest->handle(), 0.75f, 0.0f);
     const double perStep = 4.0 / mixed, fadd = 2.0 / ops[model::kFAdd];
     ops[model::kSelect] = ops[model::kFCmp] = 2.0 / std::max(perStep - fadd, perStep * 0.25);
+  }
+  {  // iselect: 1 fcmp + 1 integer select + 2 integer ALU + 1 fadd per chain step, all but the select's share removed;
+     // icmp: 1 integer compare + 1 integer select + 2 integer ALU, the select's and the ALU's shares removed
+    const double perSel = 5.0 / rate(kISelectK, 5.0 * kSteps, nearest->handle(), 1.0e-3f, 0.0f);
+    const double known = 1.0 / ops[model::kFCmp] + 2.0 / ops[model::kIAlu] + 1.0 / ops[model::kFAdd];
+    ops[model::kISelect] = 1.0 / std::max(perSel - known, perSel * 0.1);
+    const double perCmp = 4.0 / rate(kICmpK, 4.0 * kSteps, nearest->handle(), 1.5f, 0.0f);
+    const double knownCmp = 1.0 / ops[model::kISelect] + 2.0 / ops[model::kIAlu];
+    ops[model::kICmp] = 1.0 / std::max(perCmp - knownCmp, perCmp * 0.1);
   }
   {  // Latencies: the same kernels on one chain (DEPENDENT). Per chain step a device vector waits for the previous
      // step, so one core's step time is cores x lanes / (steps per second). Steps: fadd, fmul, imul (squaring) one
      // operation; ialu two dependent ones (xor, add); shift a shift then an add; cvt an fmul then two conversions;
      // select a compare beside an fadd, then the select (compare latency taken as fadd's).
     const double perCore = double(d.cores) * d.lanes;
-    auto step = [&](uint32_t k, float c) { return perCore / rate(k, 32.0, nearest->handle(), c, 0.0f, 1); };
+    auto step = [&](uint32_t k, float c) { return perCore / rate(k, kSteps, nearest->handle(), c, 0.0f, 1); };
     auto& lat = d.latencySeconds;
     lat[model::kFAdd] = lat[model::kFCmp] = step(kFAddK, 1.0e-3f);
     lat[model::kFMul] = step(kFMulK, 1.0000001f);
@@ -231,6 +251,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     lat[model::kIMul] = step(kIMulK, 1.5f);
     lat[model::kCvt] = std::max(0.5 * (step(kCvtK, 1.0001f) - lat[model::kFMul]), 0.1 * lat[model::kFMul]);
     lat[model::kSelect] = std::max(step(kSelectK, 0.75f) - lat[model::kFAdd], 0.1 * lat[model::kFAdd]);
+    // iselect: the select waits for the add (the compare is on the float chain beside it); icmp: the select waits for
+    // the compare (the add and xor beside it).
+    lat[model::kISelect] = std::max(step(kISelectK, 1.0e-3f) - lat[model::kIAlu], 0.1 * lat[model::kIAlu]);
+    lat[model::kICmp] = std::max(step(kICmpK, 1.5f) - lat[model::kISelect], 0.1 * lat[model::kIAlu]);
     // The window: iterations independent of each other, each a chain of L = 64 dependent fadds. A core that keeps W
     // operations in flight overlaps W / L chains, so an iteration takes L^2 latency / W (never less than its issue
     // time, never more than L latency): W = L^2 latency / t. In counted 8-lane operations: W lanes / 8.
@@ -282,7 +306,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   d.firstDispatchSeconds = firstDispatch;
   d.workgroupSeconds = perGroup;
   {  // Blocks no lane takes: the fadd kernel's steps behind a never-true per-lane `if`, inside and around the loop.
-    Push p{kFAddK, opts.quick ? 1u << 10 : 1u << 13, 0, 0, 1.0e-3f, -1.0f, 0.0f, 0.0f};
+    Push p{kFAddK, opts.quick ? 1u << 8 : 1u << 11, 0, 0, 1.0e-3f, -1.0f, 0.0f, 0.0f};
     const double work = timeRun(p, nearest->handle(), count) - dispatch;
     p.kind = kBranchK;
     const double straight = timeRun(p, nearest->handle(), count) - dispatch;
@@ -300,7 +324,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     const double spec = timeRun(p, nearest->handle(), count) - dispatch;
     d.foldsSpecConstants = spec < 0.5 * work;
     log << "  branch    an untaken block costs " << std::setprecision(3) << 100.0 * straight / std::max(work, 1e-12)
-        << "% of its work, an untaken loop " << 100.0 * loop / std::max(work, 1e-12) << "%, an untaken 4-iteration loop "
+        << "% of its work, an untaken loop " << 100.0 * loop / std::max(work, 1e-12) << "%, an untaken 16-iteration loop "
         << 100.0 * unrolled / std::max(work, 1e-12) << "%: "
         << (d.executesEveryBlock ? "every block runs under its mask" : "untaken blocks are skipped") << "; a block behind a false "
         << "specialization constant in a loop " << 100.0 * spec / std::max(work, 1e-12) << "%: "

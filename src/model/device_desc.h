@@ -12,8 +12,12 @@ namespace shadetwin::model {
 /// Operation classes the counting lane types report (bench/op_count.h) and the microkernels measure.
 // shift: integer shifts, a class of their own: SwiftShader's Subzero runs a vector shift as four scalar ones (calibrate:
 // ~6x an fadd, where an integer add, and or xor costs less than an fadd); lavapipe and GPUs shift at the ialu rate.
-enum OpClass { kFAdd, kFMul, kIAlu, kIMul, kCvt, kSelect, kFCmp, kShift, kOpClasses };
-inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd", "fmul", "ialu", "imul", "cvt", "select", "fcmp", "shift"};
+// icmp, iselect: integer compares and selects of integers or masks (float compares and selects of floats are fcmp and
+// select): SwiftShader runs an integer compare and the select it feeds at ~14x an integer add, a float pair at ~4x
+// (straight-line probes, docs/RESULTS.md session 22); the GPUs at the ialu rate.
+enum OpClass { kFAdd, kFMul, kIAlu, kIMul, kCvt, kSelect, kFCmp, kShift, kICmp, kISelect, kOpClasses };
+inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd", "fmul", "ialu",  "imul", "cvt",
+                                                          "select", "fcmp", "shift", "icmp", "iselect"};
 /// Texture filters the model distinguishes (RGBA32F lookups).
 // uniform: a texelFetch at coordinates every lane of the invocation group shares (shade/prelude.h texelFetchUniform),
 // per lane.

@@ -15,6 +15,8 @@ OpClass classOf(opcount::Kind k) {
     case opcount::kCvt: return kCvt;
     case opcount::kSel: return kSelect;
     case opcount::kShift: return kShift;
+    case opcount::kICmp: return kICmp;
+    case opcount::kISel: return kISelect;
     default: return kIAlu;  // integer ALU and mask logic
   }
 }

@@ -20,10 +20,10 @@
 namespace opcount {
 
 enum Kind {
-  kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kShift,
+  kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kShift, kICmp, kISel,
   kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kTexLine, kTexMiss, kTexStreamMiss, kKinds
 };
-inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "shift", "tex_lookup", "texel",
+inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "shift", "icmp", "iselect", "tex_lookup", "texel",
                                           "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform", "tex_line",
                                           "tex_miss", "tex_stream_miss"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
@@ -188,10 +188,10 @@ struct M {
   friend F<N> select(M c, float a, float b) { return select(c, F<N>(a), F<N>(b)); }
   friend U<N> select(M c, uint32_t a, uint32_t b) { return select(c, U<N>(a), U<N>(b)); }
   friend I<N> select(M c, int32_t a, int32_t b) { return select(c, I<N>(a), I<N>(b)); }
-  friend M select(M c, M a, M b) { return M(select(c.m, a.m, b.m), op(kSel, c.t, a.t, b.t)); }
+  friend M select(M c, M a, M b) { return M(select(c.m, a.m, b.m), op(kISel, c.t, a.t, b.t)); }
 };
 
-#define OPCOUNT_COMMON(Self, Lane, Elem, AddKind, MulKind, CmpKind)                                       \
+#define OPCOUNT_COMMON(Self, Lane, Elem, AddKind, MulKind, CmpKind, SelKind)                                       \
   Lane x;                                                                                                  \
   double t = 0;                                                                                            \
   Self() = default;                                                                                        \
@@ -212,7 +212,7 @@ struct M {
   friend M<N> operator>=(Self a, Self b) { return M<N>(a.x >= b.x, op(CmpKind, a.t, b.t)); }               \
   friend M<N> operator==(Self a, Self b) { return M<N>(a.x == b.x, op(CmpKind, a.t, b.t)); }               \
   friend M<N> operator!=(Self a, Self b) { return M<N>(a.x != b.x, op(CmpKind, a.t, b.t)); }               \
-  friend Self select(M<N> m, Self a, Self b) { return Self(select(m.m, a.x, b.x), op(kSel, m.t, a.t, b.t)); }
+  friend Self select(M<N> m, Self a, Self b) { return Self(select(m.m, a.x, b.x), op(SelKind, m.t, a.t, b.t)); }
 
 #define OPCOUNT_INT(Self)                                                                                   \
   friend Self operator&(Self a, Self b) { return Self(a.x & b.x, op(kIAlu, a.t, b.t)); }                   \
@@ -231,7 +231,7 @@ struct M {
 
 template <int N>
 struct U {
-  OPCOUNT_COMMON(U, emu::U32<N>, uint32_t, kIAlu, kIMul, kIAlu)
+  OPCOUNT_COMMON(U, emu::U32<N>, uint32_t, kIAlu, kIMul, kICmp, kISel)
   OPCOUNT_INT(U)
   explicit U(I<N> a);
   explicit U(F<N> a);
@@ -240,7 +240,7 @@ struct U {
 
 template <int N>
 struct I {
-  OPCOUNT_COMMON(I, emu::I32<N>, int32_t, kIAlu, kIMul, kIAlu)
+  OPCOUNT_COMMON(I, emu::I32<N>, int32_t, kIAlu, kIMul, kICmp, kISel)
   OPCOUNT_INT(I)
   explicit I(U<N> a) : x(emu::I32<N>(a.x)), t(a.t) {}
   explicit I(F<N> a);
@@ -248,7 +248,7 @@ struct I {
 
 template <int N>
 struct F {
-  OPCOUNT_COMMON(F, emu::F32<N>, float, kFAdd, kFMul, kFCmp)
+  OPCOUNT_COMMON(F, emu::F32<N>, float, kFAdd, kFMul, kFCmp, kSel)
   explicit F(I<N> a) : x(emu::F32<N>(a.x)), t(op(kCvt, a.t)) {}
   explicit F(U<N> a) : x(emu::F32<N>(a.x)), t(op(kCvt, a.t)) {}
 };

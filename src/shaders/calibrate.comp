@@ -1,7 +1,9 @@
 #version 450
-// Microkernels of `shadetwin calibrate` (issue 19): each runs `iters` iterations of 4 x 8 independent chain
-// steps of one operation class per invocation (unrolled so the loop's own cost is small), so a device's throughput for that class is ops / time once the chains
-// hide the latency. The operands come from the push constants and the invocation index, so nothing folds at
+// Microkernels of `shadetwin calibrate` (issue 19): each runs `iters` iterations of 16 x 8 independent chain
+// steps of one operation class per invocation, so a device's throughput for that class is ops / time once the chains
+// hide the latency. Unrolled 128 steps deep so the loop's own cost is small: SwiftShader carries each chain from one
+// iteration to the next through memory (a phi), and at 32 steps per iteration (4 per chain) that read fadd at 22 Gop/s
+// where straight-line code runs 47-57 (probes of 1024-65536 steps, docs/RESULTS.md session 22). The operands come from the push constants and the invocation index, so nothing folds at
 // compile time; every chain ends in the output, so nothing is dead. Not shared shading code: a thin
 // measuring kernel of the host, like bench_native_math.glsl.
 //   kind 0 fadd   x = x + c                       1 fadd per chain-iteration
@@ -18,14 +20,18 @@
 //   kind 10 branch the fadd kernel's steps inside an `if` on a per-lane value no lane takes (x0 < lod, lod = -1): about
 //                 the fadd kernel's time when the device runs every block under a mask, about nothing when it skips
 //   kind 11 branch the same, the `if` around the whole loop: a loop whose lanes are all inactive may exit at once
-//   kind 12 branch kind 10 with the block's steps in a loop of a literal 4 iterations (a compiler may unroll it)
+//   kind 12 branch kind 10 with the block's steps in a loop of a literal 16 iterations (a compiler may unroll it)
 //   kind 15 stream texelFetch along the rows: invocation i reads texels i*iters .. (i+1)*iters - 1 of the texture in
 //                 row-major order (a prefetcher's streams; against a cache-resident texture: a streamed line's cost)
 //   kind 16 shift  u = u + (u >> 3)               1 shift + 1 integer add (SwiftShader's Subzero scalarizes vector
 //                 shifts: a shift costs it ~6 fadds, an add or xor less than one; lavapipe shifts at the add rate)
+//   kind 17 icmp   u = mix(u + k, u ^ k, u < k)   1 integer compare + 1 integer select + 2 integer ALU (add, xor)
+//   kind 18 iselect u = mix(u + k, u ^ k, x < c), x = x + c   1 fcmp + 1 integer select + 2 integer ALU + 1 fadd
+//                 (the shared code's integer selects and compares: exact-math rounding, min/max, masks)
 // DEPENDENT (specialization constant 1) runs kinds 0-5 and 16 on one chain: time per step is the latency, not the
 // issue rate.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_integer_mix : require
 
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D tex;
@@ -53,13 +59,16 @@ layout(push_constant) uniform Push {
 #define IMUL(k) u##k = u##k * key;
 #define CVT(k) x##k = float(int(x##k * pc.c));
 #define SEL(k) x##k = mix(x##k + pc.c, x##k - pc.c, x##k > pc.c);  /* OpSelect, not a branch */
+#define ICMP(k) u##k = mix(u##k + key, u##k ^ key, u##k < key);
+#define ISEL(k) u##k = mix(u##k + key, u##k ^ key, x##k < pc.c); x##k = x##k + pc.c;
 #define SUM_X(k) acc.x += x##k;
 #define SUM_U(k) acc.y += float(u##k & 255u);
-#define STEPS_INDEP(OP) ALL8(OP) ALL8(OP) ALL8(OP) ALL8(OP)
+#define X4(M, OP) M(OP) M(OP) M(OP) M(OP)
+#define STEPS_INDEP(OP) X4(ALL8, OP) X4(ALL8, OP) X4(ALL8, OP) X4(ALL8, OP)
 #define ONE8(OP) OP(0) OP(0) OP(0) OP(0) OP(0) OP(0) OP(0) OP(0)
 // The chain layout is chosen outside the loop: SwiftShader runs both sides of an `if` under a mask (it would run the
 // untaken layout's steps too), but a loop whose lanes are all inactive exits at once.
-#define STEPS_DEP(OP) ONE8(OP) ONE8(OP) ONE8(OP) ONE8(OP)
+#define STEPS_DEP(OP) X4(ONE8, OP) X4(ONE8, OP) X4(ONE8, OP) X4(ONE8, OP)
 #define LOOP(OP, DOP)                                                          \
   if (DEPENDENT) {                                                             \
     for (uint n = 0u; n < pc.iters; ++n) { STEPS_DEP(DOP) }                    \
@@ -92,6 +101,10 @@ void main() {
     LOOP(CVT, CVT)
   } else if (KIND == 5u) {
     LOOP(SEL, SEL)
+  } else if (KIND == 17u) {
+    LOOP(ICMP, ICMP)
+  } else if (KIND == 18u) {
+    LOOP(ISEL, ISEL)
   } else if (KIND == 6u) {
     vec2 p = vec2(float(i & 255u), float((i >> 8u) & 255u)) * (1.0 / 256.0);
     for (uint n = 0u; n < pc.iters; ++n) {
@@ -120,7 +133,7 @@ void main() {
   } else if (KIND == 12u) {
     for (uint n = 0u; n < pc.iters; ++n) {
       if (x0 < pc.lod) {
-        for (int r = 0; r < 4; r++) { ALL8(FADD) }
+        for (int r = 0; r < 16; r++) { ALL8(FADD) }
       }
     }
   } else if (KIND == 13u) {  // a block behind a specialization constant inside a loop: DEPENDENT = true removes it
