@@ -113,8 +113,6 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   EXPECT_DOUBLE_EQ(predict(raster, rd).rasterSeconds, 4e-3 + 3e-2 + 2.5e-2);
 }
 
-}  // namespace
-
 TEST(Model, IntegerComparesAndSelectsAreCostedAtTheirOwnRates) {
   PassCounts c;
   std::array<uint64_t, opcount::kKinds> t{};
@@ -128,3 +126,5 @@ TEST(Model, IntegerComparesAndSelectsAreCostedAtTheirOwnRates) {
   d.opsPerSecond[kICmp] = 1e8, d.opsPerSecond[kISelect] = 5e7;  // SwiftShader-like: far below the float pair
   EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 24.0 / 1e8 + 16.0 / 5e7 + 8.0 / d.opsPerSecond[kSelect] + 8.0 / d.opsPerSecond[kFCmp]);
 }
+
+}  // namespace

@@ -148,18 +148,8 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   // 16 us per workgroup at 32 steps per iteration and 36 us at 128, its empty kind 33 us; the part that grows with the
   // module is not modelled yet.
   {
-    const VkDescriptorType one[] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-    vk::Kernel group(ctx, vk::Stage::Compute, kSpv_calibrate_group_comp, one, sizeof(Push));
-    const vk::Binding b[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, dst.handle()}};
-    auto groups = [&](uint32_t n) {
-      return fastestAfterWarmUp(3, [&] {
-        Push p = e;
-        p.count = 64u * n;
-        const auto t0 = std::chrono::steady_clock::now();
-        group.run(b, &p, 64u * n);
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      });
-    };
+    vk::Kernel group(ctx, vk::Stage::Compute, kSpv_calibrate_group_comp, layout, sizeof(Push));
+    auto groups = [&](uint32_t n) { return fastestAfterWarmUp(3, [&] { return runOnce(group, e, nearest->handle(), 64u * n); }); };
     std::vector<double> many, few;
     for (int r = 0; r < 5; ++r) many.push_back(groups(4096)), few.push_back(groups(64));
     perGroup = std::max(fastestOf(many) - fastestOf(few), 0.0) / 4032.0;

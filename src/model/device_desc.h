@@ -14,7 +14,7 @@ namespace shadetwin::model {
 // ~6x an fadd, where an integer add, and or xor costs less than an fadd); lavapipe and GPUs shift at the ialu rate.
 // icmp, iselect: integer compares and selects of integers or masks (float compares and selects of floats are fcmp and
 // select): SwiftShader runs an integer compare and the select it feeds at ~14x an integer add, a float pair at ~4x
-// (straight-line probes, docs/RESULTS.md session 22); the GPUs at the ialu rate.
+// (straight-line probes, docs/RESULTS.md session 22); the GPUs at their compare/select rate.
 enum OpClass { kFAdd, kFMul, kIAlu, kIMul, kCvt, kSelect, kFCmp, kShift, kICmp, kISelect, kOpClasses };
 inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd", "fmul", "ialu",  "imul", "cvt",
                                                           "select", "fcmp", "shift", "icmp", "iselect"};

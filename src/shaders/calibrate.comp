@@ -3,8 +3,9 @@
 // steps of one operation class per invocation, so a device's throughput for that class is ops / time once the chains
 // hide the latency. Unrolled 128 steps deep so the loop's own cost is small: SwiftShader carries each chain from one
 // iteration to the next through memory (a phi), and at 32 steps per iteration (4 per chain) that read fadd at 22 Gop/s
-// where straight-line code runs 47-57 (probes of 1024-65536 steps, docs/RESULTS.md session 22). The operands come from the push constants and the invocation index, so nothing folds at
-// compile time; every chain ends in the output, so nothing is dead. Not shared shading code: a thin
+// where straight-line code runs 47-57 (probes of 1024-65536 steps, docs/RESULTS.md session 22). The operands come
+// from the push constants and the invocation index, so nothing folds at compile time; every chain ends in the output,
+// so nothing is dead. Not shared shading code: a thin
 // measuring kernel of the host, like bench_native_math.glsl.
 //   kind 0 fadd   x = x + c                       1 fadd per chain-iteration
 //   kind 1 fmul   x = x * c                       1 fmul
@@ -28,7 +29,7 @@
 //   kind 17 icmp   u = mix(u + k, u ^ k, u < k)   1 integer compare + 1 integer select + 2 integer ALU (add, xor)
 //   kind 18 iselect u = mix(u + k, u ^ k, x < c), x = x + c   1 fcmp + 1 integer select + 2 integer ALU + 1 fadd
 //                 (the shared code's integer selects and compares: exact-math rounding, min/max, masks)
-// DEPENDENT (specialization constant 1) runs kinds 0-5 and 16 on one chain: time per step is the latency, not the
+// DEPENDENT (specialization constant 1) runs kinds 0-5 and 16-18 on one chain: time per step is the latency, not the
 // issue rate.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_integer_mix : require

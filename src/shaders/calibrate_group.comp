@@ -4,7 +4,7 @@
 // read 33 us per workgroup in that module of 102K words, 0.9 us in a module of 4K; docs/RESULTS.md session 22), so
 // the base cost is read from the smallest module. Not shared shading code: a thin measuring kernel of the host.
 layout(local_size_x = 64) in;
-layout(std430, set = 0, binding = 0) writeonly buffer Dst { vec4 dst[]; };
+layout(std430, set = 0, binding = 2) writeonly buffer Dst { vec4 dst[]; };  // calibrate.comp's layout (its dst)
 layout(push_constant) uniform Push { uint kind, iters, count, pad; float c, lod, step, pad2; } pc;
 void main() {
   uint i = gl_GlobalInvocationID.x;
