@@ -9,6 +9,7 @@
 #include <memory>
 #include <span>
 #include <random>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -136,301 +137,354 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   auto timeRun = [&](Push p, VkSampler s, uint32_t n) {
     return fastestAfterWarmUp(3, [&] { return runOnce(kernel(p.kind, p.pad), p, s, n); });
   };
-  // Launch cost: an empty dispatch of one workgroup, the fastest of many.
-  Push e{kEmptyK, 0, 0, 0, 1.0f, 0.0f, 0.0f, 0.0f};
-  std::vector<double> empties;
-  for (int r = 0; r < 15; ++r) empties.push_back(timeRun(e, nearest->handle(), 64));
-  const double dispatch = fastestOf(empties);
-  double perGroup = 0.0;  // every rate below removes the workgroups' setup from its time
-  // Per workgroup of 64 invocations: a kernel that does nothing, in a module of its own (calibrate_group.comp), over
-  // 4096 workgroups against 64, the fastest of five each. SwiftShader's setup of a workgroup grows with the module even
-  // where none of its code runs (probes, docs/RESULTS.md session 22): the fadd kernel in calibrate.comp's module read
-  // 16 us per workgroup at 32 steps per iteration and 36 us at 128, its empty kind 33 us; the part that grows with the
-  // module is not modelled yet.
-  {
-    vk::Kernel group(ctx, vk::Stage::Compute, kSpv_calibrate_group_comp, layout, sizeof(Push));
-    auto groups = [&](uint32_t n) { return fastestAfterWarmUp(3, [&] { return runOnce(group, e, nearest->handle(), 64u * n); }); };
-    std::vector<double> many, few;
-    for (int r = 0; r < 5; ++r) many.push_back(groups(4096)), few.push_back(groups(64));
-    perGroup = std::max(fastestOf(many) - fastestOf(few), 0.0) / 4032.0;
-    log << "  workgroup " << perGroup * 1e9 << " ns per workgroup of 64 (an empty kernel in a module of its own, 4096 "
-        << "workgroups vs 64: " << fastestOf(many) * 1e3 << " / " << fastestOf(few) * 1e3 << " ms)\n";
-  }
-  // A pipeline's first dispatch (the Vulkan build creates the technique inputs' pipelines each time it builds them):
-  // the empty kernel on a pipeline created just before, less its own second dispatch right after, the median of 9
-  // such pairs. Paired, so a host that is slower for a while (SwiftShader's workers after a 0.2 s compile, another
-  // process) moves both runs of a pair: the fastest first run less the fastest warm dispatch read 410 us in one
-  // SwiftShader calibration and 125 us in the next. A median, not fastestOf: contention can slow either run of a pair,
-  // so a difference's noise is two-sided and its minimum is biased low. lavapipe compiles a pipeline's machine code at
-  // its first dispatch.
-  double firstDispatch = 0.0;
-  {
-    std::vector<double> extra;
-    for (int r = 0; r < 9; ++r) {
-      const uint32_t spec[] = {kEmptyK, 0};
-      vk::Kernel fresh(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout, sizeof(Push), std::span<const uint32_t>{}, spec);
-      const double first = runOnce(fresh, e, nearest->handle(), 64);
-      extra.push_back(first - runOnce(fresh, e, nearest->handle(), 64));
+  // Rounds: every measurement below runs once per round, and each keeps the best it read in any round (the fastest
+  // time, the highest rate: util/timer.h BestOfRounds, keyed by its place in the round). A host that is slow for a
+  // while (another process, a noisy neighbour: one SwiftShader calibration read 0.75 GB/s and a 181 us dispatch where
+  // the one before read 5.5 GB/s and 72 us) then moves a measurement only if it is slow in every round; the pass times
+  // the model is checked against are the fastest of their runs too. The rates derived from others (shift, cvt, the
+  // compares and selects, the latencies) are derived in each round from the best so far, so the last round's are from
+  // the best of all.
+  BestOfRounds best;
+  const int rounds = std::max(1, opts.rounds ? opts.rounds : opts.quick ? 1 : 3);
+  // The empty kernel in a module of its own (calibrate_group.comp): the launch and the per-workgroup cost.
+  vk::Kernel group(ctx, vk::Stage::Compute, kSpv_calibrate_group_comp, layout, sizeof(Push));
+  std::vector<uint32_t> rateIters;  // each rate's iteration count, found in the first round and kept after
+  std::ostringstream earlier;  // the rounds before the last: their details are not printed
+  model::DeviceDesc result;
+  for (int round = 0; round < rounds; ++round) {
+    best.nextRound();
+    earlier.str("");
+    std::ostream& out = round + 1 == rounds ? log : earlier;
+    const auto roundStart = std::chrono::steady_clock::now();
+    // Launch cost: an empty dispatch of one workgroup, the fastest of many, in the empty kernel's own module (in
+    // calibrate.comp's, SwiftShader's read 132 us against 43 here: a workgroup's setup there is ~33 us, see below).
+    Push e{kEmptyK, 0, 0, 0, 1.0f, 0.0f, 0.0f, 0.0f};
+    std::vector<double> empties;
+    for (int r = 0; r < 15; ++r)
+      empties.push_back(fastestAfterWarmUp(3, [&] { return runOnce(group, e, nearest->handle(), 64); }));
+    const double dispatch = best.low(fastestOf(empties));
+    double perGroup = 0.0;  // the model's cost per workgroup (the rates below are differences: it cancels there)
+    // Per workgroup of 64 invocations: a kernel that does nothing, in a module of its own (calibrate_group.comp), over
+    // 4096 workgroups against 64, the fastest of five each. SwiftShader's setup of a workgroup grows with the module even
+    // where none of its code runs (probes, docs/RESULTS.md session 22): the fadd kernel in calibrate.comp's module read
+    // 16 us per workgroup at 32 steps per iteration and 36 us at 128, its empty kind 33 us; the part that grows with the
+    // module is not modelled yet.
+    {
+      auto groups = [&](uint32_t n) { return fastestAfterWarmUp(3, [&] { return runOnce(group, e, nearest->handle(), 64u * n); }); };
+      std::vector<double> many, few;
+      for (int r = 0; r < 5; ++r) many.push_back(groups(4096)), few.push_back(groups(64));
+      const double tMany = best.low(fastestOf(many)), tFew = best.low(fastestOf(few));
+      perGroup = std::max(tMany - tFew, 0.0) / 4032.0;
+      out << "  workgroup " << perGroup * 1e9 << " ns per workgroup of 64 (an empty kernel in a module of its own, 4096 "
+          << "workgroups vs 64: " << tMany * 1e3 << " / " << tFew * 1e3 << " ms)\n";
     }
-    std::nth_element(extra.begin(), extra.begin() + 4, extra.end());
-    firstDispatch = std::max(extra[4], 0.0);
-    log << "  first dispatch of a new pipeline: " << firstDispatch * 1e6 << " us beyond its second (median of 9 pairs)\n";
-  }
-  // Iterations grow until a run takes `target` seconds; the rate is work / (time - dispatch - the workgroups' setup).
-  auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod, uint32_t dependent = 0) {
-    Push p{kind, 16, 0, dependent, c, lod, 0.0173f, 0.0f};
-    double t = 0.0;
-    for (;;) {
-      t = timeRun(p, s, count);
-      if (t >= target || p.iters >= (1u << 24)) break;
-      p.iters = uint32_t(std::min<double>(double(1u << 24), double(p.iters) * std::max(2.0, 1.2 * target / std::max(t, 1e-6))));
-    }
-    return double(count) * double(p.iters) * workPerIter / std::max(t - dispatch - double(count / 64) * perGroup, 1e-9);
-  };
-  model::DeviceDesc d;
-  const std::string name = ctx.deviceName();
-  d.device = name.find("SwiftShader") != std::string::npos ? "swiftshader" : name.find("llvmpipe") != std::string::npos ? "lavapipe" : opts.device;
-  d.name = name;
-  d.verified = true;
-  d.cores = int(std::max(1u, std::thread::hardware_concurrency()));
-  d.lanes = d.device == "swiftshader" ? 4 : name.find("256 bits") != std::string::npos ? 8 : 4;
-  // The post-transform vertex cache the model simulates, from the driver's source (DeviceDesc VertexCacheDesc):
-  // SwiftShader's direct-mapped 64 entries, batches of 128 triangles, a miss shading 4 consecutive entries. lavapipe's
-  // draw module (a hashed cache per vertex segment) is not simulated: its vertex work stays in the triangle rate.
-  if (d.device == "swiftshader") d.vertexCache = {64, 128, 4};
-  auto& ops = d.opsPerSecond;
-  ops[model::kFAdd] = rate(kFAddK, kSteps, nearest->handle(), 1.0e-3f, 0.0f);
-  ops[model::kFMul] = rate(kFMulK, kSteps, nearest->handle(), 1.0000001f, 0.0f);
-  ops[model::kIAlu] = rate(kIAluK, 2.0 * kSteps, nearest->handle(), 1.5f, 0.0f);
-  {  // shift: 1 shift + 1 integer add per chain step; the add's share at the measured ialu rate is removed
-    const double mixed = rate(kShiftK, 2.0 * kSteps, nearest->handle(), 1.5f, 0.0f);
-    const double perStep = 2.0 / mixed, add = 1.0 / ops[model::kIAlu];
-    ops[model::kShift] = 1.0 / std::max(perStep - add, perStep * 0.25);
-  }
-  ops[model::kIMul] = rate(kIMulK, kSteps, nearest->handle(), 1.5f, 0.0f);
-  {  // cvt: 2 conversions + 1 fmul per chain step; the fmul's share at the measured fmul rate is removed
-    const double mixed = rate(kCvtK, 3.0 * kSteps, nearest->handle(), 1.0001f, 0.0f);  // ops/s of the mix
-    const double perStep = 3.0 / mixed, alu = 1.0 / ops[model::kFMul];
-    ops[model::kCvt] = 2.0 / std::max(perStep - alu, perStep * 0.25);
-  }
-  {  // select + compare: 1 + 1 per chain step beside 2 fadd, whose share is removed; the two share the rest
-    const double mixed = rate(kSelectK, 4.0 * kSteps, nearest->handle(), 0.75f, 0.0f);
-    const double perStep = 4.0 / mixed, fadd = 2.0 / ops[model::kFAdd];
-    ops[model::kSelect] = ops[model::kFCmp] = 2.0 / std::max(perStep - fadd, perStep * 0.25);
-  }
-  {  // iselect: 1 fcmp + 1 integer select + 2 integer ALU + 1 fadd per chain step, all but the select's share removed;
-     // icmp: 1 integer compare + 1 integer select + 2 integer ALU, the select's and the ALU's shares removed
-    const double perSel = 5.0 / rate(kISelectK, 5.0 * kSteps, nearest->handle(), 1.0e-3f, 0.0f);
-    const double known = 1.0 / ops[model::kFCmp] + 2.0 / ops[model::kIAlu] + 1.0 / ops[model::kFAdd];
-    ops[model::kISelect] = 1.0 / std::max(perSel - known, perSel * 0.1);
-    const double perCmp = 4.0 / rate(kICmpK, 4.0 * kSteps, nearest->handle(), 1.5f, 0.0f);
-    const double knownCmp = 1.0 / ops[model::kISelect] + 2.0 / ops[model::kIAlu];
-    ops[model::kICmp] = 1.0 / std::max(perCmp - knownCmp, perCmp * 0.1);
-  }
-  {  // Latencies: the same kernels on one chain (DEPENDENT). Per chain step a device vector waits for the previous
-     // step, so one core's step time is cores x lanes / (steps per second). Steps: fadd, fmul, imul (squaring) one
-     // operation; ialu two dependent ones (xor, add); shift a shift then an add; cvt an fmul then two conversions;
-     // select a compare beside an fadd, then the select (compare latency taken as fadd's).
-    const double perCore = double(d.cores) * d.lanes;
-    auto step = [&](uint32_t k, float c) { return perCore / rate(k, kSteps, nearest->handle(), c, 0.0f, 1); };
-    auto& lat = d.latencySeconds;
-    lat[model::kFAdd] = lat[model::kFCmp] = step(kFAddK, 1.0e-3f);
-    lat[model::kFMul] = step(kFMulK, 1.0000001f);
-    lat[model::kIAlu] = step(kIAluK, 1.5f) / 2.0;
-    lat[model::kShift] = std::max(step(kShiftK, 1.5f) - lat[model::kIAlu], 0.1 * lat[model::kIAlu]);
-    lat[model::kIMul] = step(kIMulK, 1.5f);
-    lat[model::kCvt] = std::max(0.5 * (step(kCvtK, 1.0001f) - lat[model::kFMul]), 0.1 * lat[model::kFMul]);
-    lat[model::kSelect] = std::max(step(kSelectK, 0.75f) - lat[model::kFAdd], 0.1 * lat[model::kFAdd]);
-    // iselect: the select waits for the add (the compare is on the float chain beside it); icmp: the select waits for
-    // the compare (the add and xor beside it).
-    lat[model::kISelect] = std::max(step(kISelectK, 1.0e-3f) - lat[model::kIAlu], 0.1 * lat[model::kIAlu]);
-    lat[model::kICmp] = std::max(step(kICmpK, 1.5f) - lat[model::kISelect], 0.1 * lat[model::kIAlu]);
-    // The window: iterations independent of each other, each a chain of L = 64 dependent fadds. A core that keeps W
-    // operations in flight overlaps W / L chains, so an iteration takes L^2 latency / W (never less than its issue
-    // time, never more than L latency): W = L^2 latency / t. In counted 8-lane operations: W lanes / 8.
-    const double L = 64.0;
-    const double tIter = perCore / rate(kWindowK, 1.0, nearest->handle(), 1.0e-3f, 0.0f);
-    const double wDevice = std::clamp(L * L * lat[model::kFAdd] / tIter, L, 16.0 * L);
-    d.windowOps = wDevice * d.lanes / 8.0;
-    log << "  latency  ";
-    for (int c = 0; c < model::kOpClasses; ++c) log << " " << model::kOpClassNames[c] << " " << lat[size_t(c)] * 1e9 << " ns";
-    log << "\n  window    " << d.windowOps << " counted operations (" << wDevice << " device vector operations; an iteration "
-        << tIter * 1e9 << " ns)\n";
-  }
-  d.lookupsPerSecond[model::kNearest] = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
-  {  // A texture-cache miss: the same nearest lookups on the large texture, where each lane's next texel is a new line
-     // (steps of ~71 texels and ~35 rows; the lanes start 16 texels apart), against the cache-resident 256^2. The lines
-     // that still hit (the cache's share of the texture) are taken out.
-    view = big->view();
-    const double missRate = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
-    view = img.view();
-    hostCache(d.cacheLineBytes, d.cacheBytes);  // the description's cache; its share of the large texture still hits
-    const double missShare = std::max(0.0, 1.0 - d.cacheBytes / (double(B) * B * 16));
-    d.textureMissSeconds = std::max(1.0 / missRate - 1.0 / d.lookupsPerSecond[model::kNearest], 0.0) / std::max(missShare, 0.5);
-    // A streamed line: texelFetch along the rows of the large texture against the same on the cache-resident one,
-    // per lookup, times the lookups a line holds (RGBA32F: 16 bytes each).
-    view = big->view();
-    const double streamRate = rate(kStreamK, 1.0, nearest->handle(), 1.0f, 0.0f);
-    view = img.view();
-    const double residentRate = rate(kStreamK, 1.0, nearest->handle(), 1.0f, 0.0f);
-    d.textureStreamSeconds = std::max(1.0 / streamRate - 1.0 / residentRate, 0.0) * double(d.cacheLineBytes) / 16.0 /
-                             std::max(missShare, 0.5);
-    log << "  texture   a scattered cache miss " << d.textureMissSeconds * 1e9 << " ns (nearest lookups " << missRate / 1e6
-        << " M/s on " << B << "^2 RGBA32F, " << d.lookupsPerSecond[model::kNearest] / 1e6
-        << " M/s on 256^2), a streamed line " << d.textureStreamSeconds * 1e9 << " ns (row-order fetches "
-        << streamRate / 1e6 << " / " << residentRate / 1e6 << " M/s)\n";
-  }
-  d.lookupsPerSecond[model::kBilinear] = rate(kTexK, 1.0, bilinear->handle(), 1.0f, 0.0f);
-  d.lookupsPerSecond[model::kTrilinear] = rate(kTexK, 1.0, trilinear->handle(), 1.0f, 1.5f);
-  d.lookupsPerSecond[model::kUniformFetch] = rate(kUniformFetchK, 1.0, nearest->handle(), 1.0f, 0.0f);
-  {
-    Push p{kCopyK, 1, 0, 0, 1.5f, 0.0f, 0.0f, 0.0f};
-    std::vector<double> t;  // the fastest of twelve (each of three): the copy is the noisiest rate on a shared host
-    for (int r = 0; r < 12; ++r) t.push_back(timeRun(p, nearest->handle(), uint32_t(copyVec4s / 16)));
-    // Like every rate, without the launch and the workgroups' setup (SwiftShader: 4096 workgroups x ~12 us were two
-    // thirds of this kernel's time, and read as a third of the bandwidth).
-    const uint32_t invocations = uint32_t(copyVec4s / 16);
-    d.bandwidthBytesPerSecond = double(copyVec4s) * 32.0 / std::max(fastestOf(t) - dispatch - double(invocations / 64) * perGroup, 1e-9);
-  }
-  d.dispatchSeconds = dispatch;
-  d.firstDispatchSeconds = firstDispatch;
-  d.workgroupSeconds = perGroup;
-  {  // Blocks no lane takes: the fadd kernel's steps behind a never-true per-lane `if`, inside and around the loop.
-    Push p{kFAddK, opts.quick ? 1u << 8 : 1u << 11, 0, 0, 1.0e-3f, -1.0f, 0.0f, 0.0f};
-    const double work = timeRun(p, nearest->handle(), count) - dispatch;
-    p.kind = kBranchK;
-    const double straight = timeRun(p, nearest->handle(), count) - dispatch;
-    p.kind = kBranchLoopK;
-    const double loop = timeRun(p, nearest->handle(), count) - dispatch;
-    p.kind = kBranchUnrolledK;
-    const double unrolled = timeRun(p, nearest->handle(), count) - dispatch;
-    p.kind = kBranchK, p.lod = 1.0e30f;  // the same block taken by every lane
-    const double taken = timeRun(p, nearest->handle(), count) - dispatch;
-    p.lod = -1.0f;
-    d.executesEveryBlock = straight > 0.5 * work;
-    // The same block behind a specialization constant that is false (DEPENDENT = true): a compiler that specializes
-    // removes it (and the loop, then empty); one that does not runs it under the constant as under a mask.
-    p.kind = kSpecBranchK, p.pad = 1;
-    const double spec = timeRun(p, nearest->handle(), count) - dispatch;
-    d.foldsSpecConstants = spec < 0.5 * work;
-    log << "  branch    an untaken block costs " << std::setprecision(3) << 100.0 * straight / std::max(work, 1e-12)
-        << "% of its work, an untaken loop " << 100.0 * loop / std::max(work, 1e-12) << "%, an untaken 16-iteration loop "
-        << 100.0 * unrolled / std::max(work, 1e-12) << "%: "
-        << (d.executesEveryBlock ? "every block runs under its mask" : "untaken blocks are skipped") << "; a block behind a false "
-        << "specialization constant in a loop " << 100.0 * spec / std::max(work, 1e-12) << "%: "
-        << (d.foldsSpecConstants ? "compiled out" : "runs") << "; the block taken by every lane "
-        << 100.0 * taken / std::max(work, 1e-12) << "%\n";
-  }
-  {  // Raster rates per pipeline from synthetic draws (generated geometry, never a scene): through the shadow pass's
-     // depth-only pipeline and through the G-buffer pass's (four RGBA32F targets, its vertex and fragment shaders).
-     // Per pipeline three runs: many tiny triangles into small targets (triangle-bound), two large triangles into large
-     // targets (coverage-bound), and zero-area triangles (nothing covered: the targets' clear and copy-out alone) in the
-     // same targets as each. The emulator under the device's profile counts their triangles and covered pixels; each
-     // empty run's time is removed, and the two equations give the two rates.
-    const emu::DeviceProfile& prof = emu::profileForDevice(ctx.deviceName());
-    struct Run { double seconds, triangles, fragments, vertexRuns; };
-    auto sceneOf = [](Mesh mesh, uint32_t objects) {  // `objects` draws of the mesh, in place
-      Scene sc;
-      sc.meshes.push_back(std::move(mesh));
-      sc.materials.emplace_back();
-      for (uint32_t i = 0; i < objects; ++i) {
-        Object o;
-        o.model = identity();
-        sc.objects.push_back(o);
+    // A pipeline's first dispatch (the Vulkan build creates the technique inputs' pipelines each time it builds them):
+    // the empty kernel on a pipeline created just before, less its own second dispatch right after, the median of 9
+    // such pairs. Paired, so a host that is slower for a while (SwiftShader's workers after a 0.2 s compile, another
+    // process) moves both runs of a pair: the fastest first run less the fastest warm dispatch read 410 us in one
+    // SwiftShader calibration and 125 us in the next. A median, not fastestOf: contention can slow either run of a pair,
+    // so a difference's noise is two-sided and its minimum is biased low. lavapipe compiles a pipeline's machine code at
+    // its first dispatch.
+    double firstDispatch = 0.0;
+    {
+      std::vector<double> extra;
+      for (int r = 0; r < 9; ++r) {
+        const uint32_t spec[] = {kEmptyK, 0};
+        vk::Kernel fresh(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout, sizeof(Push), std::span<const uint32_t>{}, spec);
+        const double first = runOnce(fresh, e, nearest->handle(), 64);
+        extra.push_back(first - runOnce(fresh, e, nearest->handle(), 64));
       }
-      return sc;
-    };
-    // maps depth-only maps of size^2 seen from +y (the shadow pass), or `draws` draws of the mesh into a size^2
-    // G-buffer seen from +y (the plane faces the camera; the sphere fills most of the image).
-    auto depthRun = [&](Mesh mesh, uint32_t size, uint32_t maps) {
-      const Scene sc = sceneOf(std::move(mesh), 1);
-      const std::vector<Vec3> dirs(maps, Vec3{0.0f, 1.0f, 0.0f});
-      ShadowPassVk pass(ctx, sc, size);
-      const double t = fastestAfterWarmUp(5, [&] { pass.run(dirs); return pass.lastMs * 1e-3; });
-      ShadowStats st;
-      shadowEmu(sc, dirs, size, prof, &st);
-      return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
-                 double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * maps};
-    };
-    auto gbufferRun = [&](Mesh mesh, uint32_t size, uint32_t draws) {
-      Scene sc = sceneOf(std::move(mesh), draws);
-      sc.width = sc.height = size;
-      sc.camera.eye = {0.0f, 3.0f, 0.0f}, sc.camera.up = {0.0f, 0.0f, -1.0f};
-      GbufferPassVk pass(ctx, sc);
-      const double t = fastestAfterWarmUp(5, [&] { pass.run(); return pass.lastMs * 1e-3; });
-      GbufferStats st;
-      gbufferEmu(sc, prof, &st);
-      return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
-                 double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * draws};
-    };
-    auto flat = [](Mesh m) {  // every vertex at the centre: zero-area triangles, the same bounds as a point
-      for (auto& p : m.positions) p = {0.0f, 0.0f, 0.0f};
-      m.positions.push_back({-1.0f, -1.0f, -1.0f});  // unused vertices keep the bounds of the original
-      m.positions.push_back({1.0f, 1.0f, 1.0f});
-      m.normals.resize(m.positions.size(), {0.0f, 1.0f, 0.0f});
-      m.tangents.resize(m.positions.size(), {1.0f, 0.0f, 0.0f, 1.0f});
-      m.uvs.resize(m.positions.size(), {0.0f, 0.0f});
-      return m;
-    };
-    // a, a0: the triangle-bound run and its empty run; s: a's triangles with the vertices numbered in strips (the same
-    // triangles and pixels, fewer vertex routine runs where the device's vertex cache is simulated); b, b0: the
-    // coverage-bound run and its empty run; targetBytes: the bytes of b's targets (cleared and copied out).
-    auto rates = [&](const char* name, const Run& a, const Run& s, const Run& a0, const Run& b, const Run& b0,
-                     double targetBytes) {
-      // A vertex routine run: the time a and s differ by, over the runs they differ by (0 where not simulated). The
-      // triangle-bound equation below uses s, whose runs are the fewer (a noisy a - s moves it least), and the runs
-      // never take more than three quarters of s's time (a contended run of a once left no time for the triangles).
-      const double tsRaw = s.seconds - a0.seconds;
-      double sv = a.vertexRuns > s.vertexRuns + 0.1 * a.triangles
-                      ? std::max(a.seconds - s.seconds, 0.0) / (a.vertexRuns - s.vertexRuns) : 0.0;
-      sv = std::min(sv, 0.75 * std::max(tsRaw, 0.0) / std::max(s.vertexRuns - a0.vertexRuns, 1.0));
-      const double ta = std::max(tsRaw - sv * (s.vertexRuns - a0.vertexRuns), 1e-9),
-                   tb = std::max(b.seconds - b0.seconds - sv * (b.vertexRuns - b0.vertexRuns), 1e-9);
-      // ta = s.triangles s_t + s.fragments s_f, the same for b: Cramer's rule, each cost kept positive.
-      const double det = s.triangles * b.fragments - b.triangles * s.fragments;
-      double st = (ta * b.fragments - tb * s.fragments) / det, sf = (s.triangles * tb - b.triangles * ta) / det;
-      if (!(st > 0)) st = ta / s.triangles;
-      if (!(sf > 0)) sf = tb / b.fragments;
-      log << "  raster    " << name << ": " << s.triangles << " triangles + " << s.fragments << " pixels in " << ta * 1e3
-          << " ms; " << b.triangles << " triangles + " << b.fragments << " pixels in " << tb * 1e3 << " ms; empty targets "
-          << a0.seconds * 1e3 << " / " << b0.seconds * 1e3 << " ms: " << st * 1e9 << " ns per triangle, " << sf * 1e9
-          << " ns per pixel";
-      if (d.vertexCache.entries)
-        log << "; vertex runs " << a.vertexRuns << " in " << a.seconds * 1e3 << " ms vs " << s.vertexRuns << " strip-numbered in "
-            << s.seconds * 1e3 << " ms: " << sv * 1e9 << " ns per run (excluded above)";
-      log << "\n";
-      // The targets' clear + copy-out per byte (the large empty run less a launch).
-      return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv};
-    };
-    const uint32_t segs = opts.quick ? 128 : 256, rings = opts.quick ? 64 : 128;
-    const Mesh sphere = makeSphere(segs, rings), strips = makeSphereStrips(segs, rings, 8);
-    {
-      const uint32_t small = 32, smallMaps = opts.quick ? 4 : 16, big = opts.quick ? 512 : 2048, bigMaps = opts.quick ? 4 : 8;
-      const Run a = depthRun(sphere, small, smallMaps), a0 = depthRun(flat(makePlane()), small, smallMaps);
-      const Run s = d.vertexCache.entries ? depthRun(strips, small, smallMaps) : a;
-      const Run b = depthRun(makePlane(), big, bigMaps), b0 = depthRun(flat(makePlane()), big, bigMaps);
-      d.raster[model::kDepthOnly] = rates("depth-only", a, s, a0, b, b0, double(big) * big * 4 * bigMaps);
+      std::nth_element(extra.begin(), extra.begin() + 4, extra.end());
+      firstDispatch = std::max(best.low(extra[4]), 0.0);
+      out << "  first dispatch of a new pipeline: " << firstDispatch * 1e6 << " us beyond its second (median of 9 pairs)\n";
     }
-    {
-      const uint32_t small = 64, draws = opts.quick ? 4 : 16, big = opts.quick ? 512 : 1024, bigDraws = 4;
-      const Run a = gbufferRun(sphere, small, draws), a0 = gbufferRun(flat(makePlane()), small, draws);
-      const Run s = d.vertexCache.entries ? gbufferRun(strips, small, draws) : a;
-      const Run b = gbufferRun(makePlane(), big, bigDraws), b0 = gbufferRun(flat(makePlane()), big, bigDraws);
-      d.raster[model::kGbufferRaster] = rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4));
+    // A rate from the difference of two runs: N iterations and 2N, N grown in the first round until a run takes half
+    // of `target` seconds (and kept in the rounds after, so each run's time is the fastest of every round). The
+    // difference is N iterations' work alone: the launch, the workgroups' setup and the prologue and epilogue of each
+    // invocation cancel, whatever the module (SwiftShader's setup of a workgroup in calibrate.comp's module is ~33 us
+    // where the empty kernel's own module reads 0.3: subtracting the latter left 2,048 x 33 us in the fadd kernel's
+    // 0.25 s, a quarter of it).
+    size_t rateAt = 0;
+    auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod, uint32_t dependent = 0) {
+      Push p{kind, 16, 0, dependent, c, lod, 0.0173f, 0.0f};
+      if (rateAt == rateIters.size()) {
+        for (;;) {
+          const double t = timeRun(p, s, count);
+          if (t >= 0.5 * target || p.iters >= (1u << 23)) break;
+          p.iters = uint32_t(std::min<double>(double(1u << 23),
+                                              double(p.iters) * std::max(2.0, 0.6 * target / std::max(t, 1e-6))));
+        }
+        rateIters.push_back(p.iters);
+      }
+      p.iters = rateIters[rateAt++];
+      const double t1 = best.low(timeRun(p, s, count));
+      Push q = p;
+      q.iters = 2 * p.iters;
+      const double t2 = best.low(timeRun(q, s, count));
+      return double(count) * double(p.iters) * workPerIter / std::max(t2 - t1, 1e-3 * t2);
+    };
+    model::DeviceDesc d;
+    const std::string name = ctx.deviceName();
+    d.device = name.find("SwiftShader") != std::string::npos ? "swiftshader" : name.find("llvmpipe") != std::string::npos ? "lavapipe" : opts.device;
+    d.name = name;
+    d.verified = true;
+    d.cores = int(std::max(1u, std::thread::hardware_concurrency()));
+    d.lanes = d.device == "swiftshader" ? 4 : name.find("256 bits") != std::string::npos ? 8 : 4;
+    // The post-transform vertex cache the model simulates, from the driver's source (DeviceDesc VertexCacheDesc):
+    // SwiftShader's direct-mapped 64 entries, batches of 128 triangles, a miss shading 4 consecutive entries. lavapipe's
+    // draw module (a hashed cache per vertex segment) is not simulated: its vertex work stays in the triangle rate.
+    if (d.device == "swiftshader") d.vertexCache = {64, 128, 4};
+    auto& ops = d.opsPerSecond;
+    ops[model::kFAdd] = rate(kFAddK, kSteps, nearest->handle(), 1.0e-3f, 0.0f);
+    ops[model::kFMul] = rate(kFMulK, kSteps, nearest->handle(), 1.0000001f, 0.0f);
+    ops[model::kIAlu] = rate(kIAluK, 2.0 * kSteps, nearest->handle(), 1.5f, 0.0f);
+    {  // shift: 1 shift + 1 integer add per chain step; the add's share at the measured ialu rate is removed
+      const double mixed = rate(kShiftK, 2.0 * kSteps, nearest->handle(), 1.5f, 0.0f);
+      const double perStep = 2.0 / mixed, add = 1.0 / ops[model::kIAlu];
+      ops[model::kShift] = 1.0 / std::max(perStep - add, perStep * 0.25);
     }
+    ops[model::kIMul] = rate(kIMulK, kSteps, nearest->handle(), 1.5f, 0.0f);
+    {  // cvt: 2 conversions + 1 fmul per chain step; the fmul's share at the measured fmul rate is removed
+      const double mixed = rate(kCvtK, 3.0 * kSteps, nearest->handle(), 1.0001f, 0.0f);  // ops/s of the mix
+      const double perStep = 3.0 / mixed, alu = 1.0 / ops[model::kFMul];
+      ops[model::kCvt] = 2.0 / std::max(perStep - alu, perStep * 0.25);
+    }
+    {  // select + compare: 1 + 1 per chain step beside 2 fadd, whose share is removed; the two share the rest
+      const double mixed = rate(kSelectK, 4.0 * kSteps, nearest->handle(), 0.75f, 0.0f);
+      const double perStep = 4.0 / mixed, fadd = 2.0 / ops[model::kFAdd];
+      ops[model::kSelect] = ops[model::kFCmp] = 2.0 / std::max(perStep - fadd, perStep * 0.25);
+    }
+    {  // iselect: 1 fcmp + 1 integer select + 2 integer ALU + 1 fadd per chain step, all but the select's share removed;
+       // icmp: 1 integer compare + 1 integer select + 2 integer ALU, the select's and the ALU's shares removed
+      const double perSel = 5.0 / rate(kISelectK, 5.0 * kSteps, nearest->handle(), 1.0e-3f, 0.0f);
+      const double known = 1.0 / ops[model::kFCmp] + 2.0 / ops[model::kIAlu] + 1.0 / ops[model::kFAdd];
+      ops[model::kISelect] = 1.0 / std::max(perSel - known, perSel * 0.1);
+      const double perCmp = 4.0 / rate(kICmpK, 4.0 * kSteps, nearest->handle(), 1.5f, 0.0f);
+      const double knownCmp = 1.0 / ops[model::kISelect] + 2.0 / ops[model::kIAlu];
+      ops[model::kICmp] = 1.0 / std::max(perCmp - knownCmp, perCmp * 0.1);
+    }
+    {  // Latencies: the same kernels on one chain (DEPENDENT). Per chain step a device vector waits for the previous
+       // step, so one core's step time is cores x lanes / (steps per second). Steps: fadd, fmul, imul (squaring) one
+       // operation; ialu two dependent ones (xor, add); shift a shift then an add; cvt an fmul then two conversions;
+       // select a compare beside an fadd, then the select (compare latency taken as fadd's).
+      const double perCore = double(d.cores) * d.lanes;
+      auto step = [&](uint32_t k, float c) { return perCore / rate(k, kSteps, nearest->handle(), c, 0.0f, 1); };
+      auto& lat = d.latencySeconds;
+      lat[model::kFAdd] = lat[model::kFCmp] = step(kFAddK, 1.0e-3f);
+      lat[model::kFMul] = step(kFMulK, 1.0000001f);
+      lat[model::kIAlu] = step(kIAluK, 1.5f) / 2.0;
+      lat[model::kShift] = std::max(step(kShiftK, 1.5f) - lat[model::kIAlu], 0.1 * lat[model::kIAlu]);
+      lat[model::kIMul] = step(kIMulK, 1.5f);
+      lat[model::kCvt] = std::max(0.5 * (step(kCvtK, 1.0001f) - lat[model::kFMul]), 0.1 * lat[model::kFMul]);
+      lat[model::kSelect] = std::max(step(kSelectK, 0.75f) - lat[model::kFAdd], 0.1 * lat[model::kFAdd]);
+      // iselect: the select waits for the add (the compare is on the float chain beside it); icmp: the select waits for
+      // the compare (the add and xor beside it).
+      lat[model::kISelect] = std::max(step(kISelectK, 1.0e-3f) - lat[model::kIAlu], 0.1 * lat[model::kIAlu]);
+      lat[model::kICmp] = std::max(step(kICmpK, 1.5f) - lat[model::kISelect], 0.1 * lat[model::kIAlu]);
+      // The window: iterations independent of each other, each a chain of L = 64 dependent fadds. A core that keeps W
+      // operations in flight overlaps W / L chains, so an iteration takes L^2 latency / W (never less than its issue
+      // time, never more than L latency): W = L^2 latency / t. In counted 8-lane operations: W lanes / 8.
+      const double L = 64.0;
+      const double tIter = perCore / rate(kWindowK, 1.0, nearest->handle(), 1.0e-3f, 0.0f);
+      const double wDevice = std::clamp(L * L * lat[model::kFAdd] / tIter, L, 16.0 * L);
+      d.windowOps = wDevice * d.lanes / 8.0;
+      out << "  latency  ";
+      for (int c = 0; c < model::kOpClasses; ++c) out << " " << model::kOpClassNames[c] << " " << lat[size_t(c)] * 1e9 << " ns";
+      out << "\n  window    " << d.windowOps << " counted operations (" << wDevice << " device vector operations; an iteration "
+          << tIter * 1e9 << " ns)\n";
+    }
+    d.lookupsPerSecond[model::kNearest] = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
+    {  // A texture-cache miss: the same nearest lookups on the large texture, where each lane's next texel is a new line
+       // (steps of ~71 texels and ~35 rows; the lanes start 16 texels apart), against the cache-resident 256^2. The lines
+       // that still hit (the cache's share of the texture) are taken out.
+      view = big->view();
+      const double missRate = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
+      view = img.view();
+      hostCache(d.cacheLineBytes, d.cacheBytes);  // the description's cache; its share of the large texture still hits
+      const double missShare = std::max(0.0, 1.0 - d.cacheBytes / (double(B) * B * 16));
+      d.textureMissSeconds = std::max(1.0 / missRate - 1.0 / d.lookupsPerSecond[model::kNearest], 0.0) / std::max(missShare, 0.5);
+      // A streamed line: texelFetch along the rows of the large texture against the same on the cache-resident one,
+      // per lookup, times the lookups a line holds (RGBA32F: 16 bytes each).
+      view = big->view();
+      const double streamRate = rate(kStreamK, 1.0, nearest->handle(), 1.0f, 0.0f);
+      view = img.view();
+      const double residentRate = rate(kStreamK, 1.0, nearest->handle(), 1.0f, 0.0f);
+      d.textureStreamSeconds = std::max(1.0 / streamRate - 1.0 / residentRate, 0.0) * double(d.cacheLineBytes) / 16.0 /
+                               std::max(missShare, 0.5);
+      out << "  texture   a scattered cache miss " << d.textureMissSeconds * 1e9 << " ns (nearest lookups " << missRate / 1e6
+          << " M/s on " << B << "^2 RGBA32F, " << d.lookupsPerSecond[model::kNearest] / 1e6
+          << " M/s on 256^2), a streamed line " << d.textureStreamSeconds * 1e9 << " ns (row-order fetches "
+          << streamRate / 1e6 << " / " << residentRate / 1e6 << " M/s)\n";
+    }
+    d.lookupsPerSecond[model::kBilinear] = rate(kTexK, 1.0, bilinear->handle(), 1.0f, 0.0f);
+    d.lookupsPerSecond[model::kTrilinear] = rate(kTexK, 1.0, trilinear->handle(), 1.0f, 1.5f);
+    d.lookupsPerSecond[model::kUniformFetch] = rate(kUniformFetchK, 1.0, nearest->handle(), 1.0f, 0.0f);
+    {
+      // One pass over the buffers against three, the fastest of six (each of three) each: the copy is the noisiest
+      // rate on a shared host. Like every rate, a difference: the launch and the 4,096 workgroups' setup cancel
+      // (SwiftShader: ~33 us each in calibrate.comp's module, which subtracting the empty module's 0.3 us left in,
+      // reading 0.73 GB/s in three rounds of one calibration).
+      const uint32_t invocations = uint32_t(copyVec4s / 16);
+      auto passes = [&](uint32_t n) {
+        Push p{kCopyK, n, 0, 0, 1.5f, 0.0f, 0.0f, 0.0f};
+        std::vector<double> t;
+        for (int r = 0; r < 6; ++r) t.push_back(timeRun(p, nearest->handle(), invocations));
+        return best.low(fastestOf(t));
+      };
+      const double one = passes(1), three = passes(3);
+      d.bandwidthBytesPerSecond = 2.0 * double(copyVec4s) * 32.0 / std::max(three - one, 1e-3 * three);
+    }
+    d.dispatchSeconds = dispatch;
+    d.firstDispatchSeconds = firstDispatch;
+    d.workgroupSeconds = perGroup;
+    {  // Blocks no lane takes: the fadd kernel's steps behind a never-true per-lane `if`, inside and around the loop.
+      // Each time less the empty kind's over the same invocations in the same module (the launch and the workgroups'
+      // setup there).
+      Push p{kFAddK, opts.quick ? 1u << 8 : 1u << 11, 0, 0, 1.0e-3f, -1.0f, 0.0f, 0.0f};
+      Push none = p;
+      none.kind = kEmptyK;
+      const double base = best.low(timeRun(none, nearest->handle(), count));
+      const double work = best.low(timeRun(p, nearest->handle(), count)) - base;
+      p.kind = kBranchK;
+      const double straight = best.low(timeRun(p, nearest->handle(), count)) - base;
+      p.kind = kBranchLoopK;
+      const double loop = best.low(timeRun(p, nearest->handle(), count)) - base;
+      p.kind = kBranchUnrolledK;
+      const double unrolled = best.low(timeRun(p, nearest->handle(), count)) - base;
+      p.kind = kBranchK, p.lod = 1.0e30f;  // the same block taken by every lane
+      const double taken = best.low(timeRun(p, nearest->handle(), count)) - base;
+      p.lod = -1.0f;
+      d.executesEveryBlock = straight > 0.5 * work;
+      // The same block behind a specialization constant that is false (DEPENDENT = true): a compiler that specializes
+      // removes it (and the loop, then empty); one that does not runs it under the constant as under a mask.
+      p.kind = kSpecBranchK, p.pad = 1;
+      const double spec = best.low(timeRun(p, nearest->handle(), count)) - base;
+      d.foldsSpecConstants = spec < 0.5 * work;
+      out << "  branch    an untaken block costs " << std::setprecision(3) << 100.0 * straight / std::max(work, 1e-12)
+          << "% of its work, an untaken loop " << 100.0 * loop / std::max(work, 1e-12) << "%, an untaken 16-iteration loop "
+          << 100.0 * unrolled / std::max(work, 1e-12) << "%: "
+          << (d.executesEveryBlock ? "every block runs under its mask" : "untaken blocks are skipped") << "; a block behind a false "
+          << "specialization constant in a loop " << 100.0 * spec / std::max(work, 1e-12) << "%: "
+          << (d.foldsSpecConstants ? "compiled out" : "runs") << "; the block taken by every lane "
+          << 100.0 * taken / std::max(work, 1e-12) << "%\n";
+    }
+    {  // Raster rates per pipeline from synthetic draws (generated geometry, never a scene): through the shadow pass's
+       // depth-only pipeline and through the G-buffer pass's (four RGBA32F targets, its vertex and fragment shaders).
+       // Per pipeline three runs: many tiny triangles into small targets (triangle-bound), two large triangles into large
+       // targets (coverage-bound), and zero-area triangles (nothing covered: the targets' clear and copy-out alone) in the
+       // same targets as each. The emulator under the device's profile counts their triangles and covered pixels; each
+       // empty run's time is removed, and the two equations give the two rates.
+      const emu::DeviceProfile& prof = emu::profileForDevice(ctx.deviceName());
+      struct Run { double seconds, triangles, fragments, vertexRuns; };
+      auto sceneOf = [](Mesh mesh, uint32_t objects) {  // `objects` draws of the mesh, in place
+        Scene sc;
+        sc.meshes.push_back(std::move(mesh));
+        sc.materials.emplace_back();
+        for (uint32_t i = 0; i < objects; ++i) {
+          Object o;
+          o.model = identity();
+          sc.objects.push_back(o);
+        }
+        return sc;
+      };
+      // maps depth-only maps of size^2 seen from +y (the shadow pass), or `draws` draws of the mesh into a size^2
+      // G-buffer seen from +y (the plane faces the camera; the sphere fills most of the image).
+      auto depthRun = [&](Mesh mesh, uint32_t size, uint32_t maps) {
+        const Scene sc = sceneOf(std::move(mesh), 1);
+        const std::vector<Vec3> dirs(maps, Vec3{0.0f, 1.0f, 0.0f});
+        ShadowPassVk pass(ctx, sc, size);
+        const double t = best.low(fastestAfterWarmUp(5, [&] { pass.run(dirs); return pass.lastMs * 1e-3; }));
+        ShadowStats st;
+        shadowEmu(sc, dirs, size, prof, &st);
+        return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
+                   double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * maps};
+      };
+      auto gbufferRun = [&](Mesh mesh, uint32_t size, uint32_t draws) {
+        Scene sc = sceneOf(std::move(mesh), draws);
+        sc.width = sc.height = size;
+        sc.camera.eye = {0.0f, 3.0f, 0.0f}, sc.camera.up = {0.0f, 0.0f, -1.0f};
+        GbufferPassVk pass(ctx, sc);
+        const double t = best.low(fastestAfterWarmUp(5, [&] { pass.run(); return pass.lastMs * 1e-3; }));
+        GbufferStats st;
+        gbufferEmu(sc, prof, &st);
+        return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
+                   double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * draws};
+      };
+      auto flat = [](Mesh m) {  // every vertex at the centre: zero-area triangles, the same bounds as a point
+        for (auto& p : m.positions) p = {0.0f, 0.0f, 0.0f};
+        m.positions.push_back({-1.0f, -1.0f, -1.0f});  // unused vertices keep the bounds of the original
+        m.positions.push_back({1.0f, 1.0f, 1.0f});
+        m.normals.resize(m.positions.size(), {0.0f, 1.0f, 0.0f});
+        m.tangents.resize(m.positions.size(), {1.0f, 0.0f, 0.0f, 1.0f});
+        m.uvs.resize(m.positions.size(), {0.0f, 0.0f});
+        return m;
+      };
+      // a, a0: the triangle-bound run and its empty run; s: a's triangles with the vertices numbered in strips (the same
+      // triangles and pixels, fewer vertex routine runs where the device's vertex cache is simulated); b, b0: the
+      // coverage-bound run and its empty run; targetBytes: the bytes of b's targets (cleared and copied out).
+      auto rates = [&](const char* name, const Run& a, const Run& s, const Run& a0, const Run& b, const Run& b0,
+                       double targetBytes) {
+        // A vertex routine run: the time a and s differ by, over the runs they differ by (0 where not simulated). The
+        // triangle-bound equation below uses s, whose runs are the fewer (a noisy a - s moves it least), and the runs
+        // never take more than three quarters of s's time (a contended run of a once left no time for the triangles).
+        const double tsRaw = s.seconds - a0.seconds;
+        double sv = a.vertexRuns > s.vertexRuns + 0.1 * a.triangles
+                        ? std::max(a.seconds - s.seconds, 0.0) / (a.vertexRuns - s.vertexRuns) : 0.0;
+        sv = std::min(sv, 0.75 * std::max(tsRaw, 0.0) / std::max(s.vertexRuns - a0.vertexRuns, 1.0));
+        const double ta = std::max(tsRaw - sv * (s.vertexRuns - a0.vertexRuns), 1e-9),
+                     tb = std::max(b.seconds - b0.seconds - sv * (b.vertexRuns - b0.vertexRuns), 1e-9);
+        // ta = s.triangles s_t + s.fragments s_f, the same for b: Cramer's rule, each cost kept positive.
+        const double det = s.triangles * b.fragments - b.triangles * s.fragments;
+        double st = (ta * b.fragments - tb * s.fragments) / det, sf = (s.triangles * tb - b.triangles * ta) / det;
+        if (!(st > 0)) st = ta / s.triangles;
+        if (!(sf > 0)) sf = tb / b.fragments;
+        out << "  raster    " << name << ": " << s.triangles << " triangles + " << s.fragments << " pixels in " << ta * 1e3
+            << " ms; " << b.triangles << " triangles + " << b.fragments << " pixels in " << tb * 1e3 << " ms; empty targets "
+            << a0.seconds * 1e3 << " / " << b0.seconds * 1e3 << " ms: " << st * 1e9 << " ns per triangle, " << sf * 1e9
+            << " ns per pixel";
+        if (d.vertexCache.entries)
+          out << "; vertex runs " << a.vertexRuns << " in " << a.seconds * 1e3 << " ms vs " << s.vertexRuns << " strip-numbered in "
+              << s.seconds * 1e3 << " ms: " << sv * 1e9 << " ns per run (excluded above)";
+        out << "\n";
+        // The targets' clear + copy-out per byte (the large empty run less a launch).
+        return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv};
+      };
+      const uint32_t segs = opts.quick ? 128 : 256, rings = opts.quick ? 64 : 128;
+      const Mesh sphere = makeSphere(segs, rings), strips = makeSphereStrips(segs, rings, 8);
+      {
+        const uint32_t small = 32, smallMaps = opts.quick ? 4 : 16, big = opts.quick ? 512 : 2048, bigMaps = opts.quick ? 4 : 8;
+        const Run a = depthRun(sphere, small, smallMaps), a0 = depthRun(flat(makePlane()), small, smallMaps);
+        const Run s = d.vertexCache.entries ? depthRun(strips, small, smallMaps) : a;
+        const Run b = depthRun(makePlane(), big, bigMaps), b0 = depthRun(flat(makePlane()), big, bigMaps);
+        d.raster[model::kDepthOnly] = rates("depth-only", a, s, a0, b, b0, double(big) * big * 4 * bigMaps);
+      }
+      {
+        const uint32_t small = 64, draws = opts.quick ? 4 : 16, big = opts.quick ? 512 : 1024, bigDraws = 4;
+        const Run a = gbufferRun(sphere, small, draws), a0 = gbufferRun(flat(makePlane()), small, draws);
+        const Run s = d.vertexCache.entries ? gbufferRun(strips, small, draws) : a;
+        const Run b = gbufferRun(makePlane(), big, bigDraws), b0 = gbufferRun(flat(makePlane()), big, bigDraws);
+        d.raster[model::kGbufferRaster] = rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4));
+      }
+    }
+    d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
+                   std::to_string(d.cores) + " cores): microkernels of src/shaders/calibrate.comp only; cache from sysfs";
+    out << std::setprecision(4);
+    for (int c = 0; c < model::kOpClasses; ++c) out << "  " << std::left << std::setw(10) << model::kOpClassNames[c] << ops[size_t(c)] / 1e9 << " Gop/s\n";
+    for (int f = 0; f < model::kTexFilters; ++f)
+      out << "  " << std::left << std::setw(10) << model::kTexFilterNames[f] << d.lookupsPerSecond[size_t(f)] / 1e6 << " Mlookup/s\n";
+    out << "  bandwidth " << d.bandwidthBytesPerSecond / 1e9 << " GB/s\n  dispatch  " << d.dispatchSeconds * 1e6 << " us\n";
+    for (int r = 0; r < model::kRasterPipelines; ++r)
+      out << "  " << model::kRasterPipelineNames[r] << ": triangles " << d.raster[size_t(r)].trianglesPerSecond / 1e6
+          << " M/s, fragments " << d.raster[size_t(r)].fragmentsPerSecond / 1e6 << " M/s, targets "
+          << d.raster[size_t(r)].targetBytesPerSecond / 1e9 << " GB/s (clear + copy-out)\n";
+    log << "  round " << round + 1 << "/" << rounds << " (" << std::fixed << std::setprecision(1)
+        << std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count() << " s): dispatch "
+        << dispatch * 1e6 << " us, bandwidth " << d.bandwidthBytesPerSecond / 1e9 << " GB/s, fadd "
+        << ops[model::kFAdd] / 1e9 << " Gop/s, nearest " << d.lookupsPerSecond[model::kNearest] / 1e6
+        << " M/s (from the fastest runs so far)" << std::defaultfloat << std::setprecision(6) << std::endl;
+    result = d;
   }
-  d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
-                 std::to_string(d.cores) + " cores): microkernels of src/shaders/calibrate.comp only; cache from sysfs";
-  log << std::setprecision(4);
-  for (int c = 0; c < model::kOpClasses; ++c) log << "  " << std::left << std::setw(10) << model::kOpClassNames[c] << ops[size_t(c)] / 1e9 << " Gop/s\n";
-  for (int f = 0; f < model::kTexFilters; ++f)
-    log << "  " << std::left << std::setw(10) << model::kTexFilterNames[f] << d.lookupsPerSecond[size_t(f)] / 1e6 << " Mlookup/s\n";
-  log << "  bandwidth " << d.bandwidthBytesPerSecond / 1e9 << " GB/s\n  dispatch  " << d.dispatchSeconds * 1e6 << " us\n";
-  for (int r = 0; r < model::kRasterPipelines; ++r)
-    log << "  " << model::kRasterPipelineNames[r] << ": triangles " << d.raster[size_t(r)].trianglesPerSecond / 1e6
-        << " M/s, fragments " << d.raster[size_t(r)].fragmentsPerSecond / 1e6 << " M/s, targets "
-        << d.raster[size_t(r)].targetBytesPerSecond / 1e9 << " GB/s (clear + copy-out)\n";
-  return d;
+  return result;
 }
 
 int calibrateCommand(const CalibrateOptions& opts, std::ostream& log) {

@@ -14,6 +14,7 @@ struct CalibrateOptions {
   std::string device = "lavapipe";  // Vulkan device substring (lavapipe, swiftshader)
   std::string out;                  // default devices/<device>.json
   bool quick = false;               // short runs (tests): rates are then rough
+  int rounds = 0;                   // rounds of every microkernel, each value the best of its rounds (0: 3, quick 1)
 };
 
 /// Runs the microkernels and returns the description (also printed, one rate per line).

@@ -116,6 +116,9 @@ int main(int argc, char** argv) {
   calibrate->add_option("--device", co.device, "Vulkan device (substring of its name: lavapipe, swiftshader)");
   calibrate->add_option("--out", co.out, "output file (default devices/<device>.json)");
   calibrate->add_flag("--quick", co.quick, "short runs (rough rates; for tests)");
+  calibrate->add_option("--rounds", co.rounds, "rounds of every microkernel; each value is the best of its rounds "
+                                               "(default 3, --quick 1)")
+      ->check(CLI::Range(1, 20));
   shadetwin::ModelOptions mo;
   auto* modelCmd = app.add_subcommand("model", "predict a pass's time on a device from its counted work and the device's "
                                                "description, every pass of a frame; --validate against the software devices");
@@ -135,6 +138,8 @@ int main(int argc, char** argv) {
   modelCmd->add_option("--devices-list", mo.devices, "--validate: software devices (default: lavapipe swiftshader)");
   modelCmd->add_option("--csv", mo.csv, "--validate: write one row per pass to this CSV");
   modelCmd->add_flag("--calibrate", mo.calibrate, "--validate: calibrate each device (devices/<D>.json) just before measuring it");
+  modelCmd->add_option("--calibrate-rounds", mo.calibrateRounds, "--calibrate: calibrate's --rounds (default 3)")
+      ->check(CLI::Range(1, 20));
   auto* bench = app.add_subcommand("bench", "time passes on the emulator and on a Vulkan device in one run; last line: ratio emu/vulkan");
   bench->add_option("--scene", bo.scene, "scene file");
   bench->add_option("--passes", bo.passes, "comma-separated passes: gbuffer, shadow, shade");

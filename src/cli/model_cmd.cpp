@@ -209,6 +209,7 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
     if (opts.calibrate) {
       CalibrateOptions co;
       co.device = d;
+      co.rounds = opts.calibrateRounds;
       std::filesystem::create_directories(opts.devicesDir);
       model::saveDeviceDesc(calibrateDevice(co, log), opts.devicesDir + "/" + d + ".json");
       log << "wrote " << opts.devicesDir << "/" << d << ".json\n";

@@ -27,6 +27,7 @@ struct ModelOptions {
   // --validate: calibrate each device (writing <devicesDir>/<device>.json) just before its passes are measured, so
   // the prediction and the measurement see the same state of a shared host (its speed drifts 15-35% over minutes).
   bool calibrate = false;
+  int calibrateRounds = 0;  // calibrate's rounds (0: its default)
 };
 
 int modelCommand(const ModelOptions& opts, std::ostream& log);

@@ -24,4 +24,23 @@ double timeMs(F&& f) {
 /// repeatable than a median (Chen & Revels, "Robust benchmarking in noisy environments", 2016). -1 for no runs.
 inline double fastestOf(const std::vector<double>& t) { return t.empty() ? -1.0 : *std::min_element(t.begin(), t.end()); }
 
+/// The best each measurement of a repeated sequence has read (calibrate's rounds): the k-th low() or high() call after
+/// nextRound() is the k-th measurement of the round, and returns the lowest (a time) or highest (a rate) it has read in
+/// any round so far. A host that is slow for a while then moves a measurement only if it is slow in every round.
+class BestOfRounds {
+ public:
+  void nextRound() { at_ = 0; }
+  double low(double x) {
+    if (at_ == v_.size()) v_.push_back(x);
+    v_[at_] = std::min(v_[at_], x);
+    return v_[at_++];
+  }
+  double high(double x) { return -low(-x); }
+  size_t measurements() const { return v_.size(); }
+
+ private:
+  std::vector<double> v_;
+  size_t at_ = 0;
+};
+
 }  // namespace shadetwin
