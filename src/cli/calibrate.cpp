@@ -207,17 +207,21 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     size_t rateAt = 0;
     auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod, uint32_t dependent = 0) {
       Push p{kind, 16, 0, dependent, c, lod, 0.0173f, 0.0f};
+      double t = 0.0;  // the run at N: in the first round the last run of the search for N
       if (rateAt == rateIters.size()) {
         for (;;) {
-          const double t = timeRun(p, s, count);
+          t = timeRun(p, s, count);
           if (t >= 0.5 * target || p.iters >= (1u << 23)) break;
           p.iters = uint32_t(std::min<double>(double(1u << 23),
                                               double(p.iters) * std::max(2.0, 0.6 * target / std::max(t, 1e-6))));
         }
         rateIters.push_back(p.iters);
+      } else {
+        p.iters = rateIters[rateAt];
+        t = timeRun(p, s, count);
       }
-      p.iters = rateIters[rateAt++];
-      const double t1 = best.low(timeRun(p, s, count));
+      ++rateAt;
+      const double t1 = best.low(t);
       Push q = p;
       q.iters = 2 * p.iters;
       const double t2 = best.low(timeRun(q, s, count));
