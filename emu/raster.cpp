@@ -538,7 +538,7 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
   std::unique_ptr<TriSetup[]> tris(new TriSetup[in.triangles]);  // default-initialized: ok[t] says which are set up
   std::vector<uint8_t> ok(in.triangles, 0);
   std::vector<std::vector<TriSetup>> extra(in.triangles);  // clipped: fan pieces
-  std::atomic<size_t> clipped{0}, culled{0};
+  std::atomic<size_t> clipped{0}, culled{0}, outside{0};
   tbb::parallel_for(size_t(0), in.triangles, [&](size_t t) {
     DenormalScope mode(false);
     ClipVertex cv[kMaxPoly];
@@ -565,7 +565,10 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
         return;
       }
       clipped.fetch_add(1, std::memory_order_relaxed);
-      if (all) return;
+      if (all) {
+        outside.fetch_add(1, std::memory_order_relaxed);
+        return;
+      }
       const int n = clipPolygon(dev.raster, cv, any, nv);
       if (n < 3) return;
       // Coverage from the clipped polygon, re-projected (SetupRoutine: rhw = w != 0 ? 1 / w : 1); the planes
@@ -593,7 +596,10 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
       return;
     }
     clipped.fetch_add(1, std::memory_order_relaxed);
-    if (all) return;  // every vertex outside one plane
+    if (all) {  // every vertex outside one plane
+      outside.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
     const int n = clipPolygon(dev.raster, cv, any, nv);
     if (n < 3) return;
     WinVertex w[kMaxPoly];
@@ -736,6 +742,7 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
     stats->trianglesIn += in.triangles;
     stats->trianglesClipped += clipped.load();
     stats->trianglesCulled += culled.load();
+    stats->trianglesOutside += outside.load();
     stats->quads += quadCount.load();
     stats->fragments += fragCount.load();
     stats->trianglesSpanning += spanning;

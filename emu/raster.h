@@ -73,9 +73,11 @@ struct Framebuffer {
 
 // trianglesSpanning: set-up triangles whose extent contains a pixel-centre row of the target (a software rasterizer's
 // set-up may reject the others before computing spans and interpolants; the performance model prints it, a lead for a
-// set-up term of its raster cost, not used yet).
+// set-up term of its raster cost, not used yet). trianglesOutside: triangles whose three vertices are all outside one
+// clip plane (trivially rejected before set-up; counted in trianglesClipped too).
 struct RasterStats {
   size_t trianglesIn = 0, trianglesClipped = 0, trianglesCulled = 0, quads = 0, fragments = 0, trianglesSpanning = 0;
+  size_t trianglesOutside = 0;
 };
 
 /// Rasterizes one draw into `fb` (depth test less-or-equal with depth writes), running `fs` on every

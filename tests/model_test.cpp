@@ -60,6 +60,23 @@ TEST(Model, VertexRunsCostTheirPipelinesRunTime) {
   EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, without + 600 * 4e-8);
 }
 
+TEST(Model, OutsideTrianglesAndFurtherDrawsCostTheirPipelinesRates) {
+  PassCounts c;
+  c.triangles = 1000, c.outsideTriangles = 400, c.dispatches = 5, c.rasterPipeline = kGbufferRaster;
+  DeviceDesc d = device(false);
+  d.raster[kGbufferRaster].outsideTriangleSeconds = 1e-9;
+  d.raster[kGbufferRaster].drawSeconds = 2e-5;
+  const Prediction p = predict(c, d);
+  EXPECT_DOUBLE_EQ(p.rasterSeconds, 600.0 / 5e6 + 400 * 1e-9);
+  EXPECT_DOUBLE_EQ(p.launchSeconds, 1e-4 + 4 * 2e-5);  // one submission, four draws beyond the first
+  // The old charges (an outside triangle at the set-up rate, a draw at a dispatch) give the old prediction.
+  d.raster[kGbufferRaster].outsideTriangleSeconds = 1.0 / 5e6, d.raster[kGbufferRaster].drawSeconds = d.dispatchSeconds;
+  EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, 1000.0 / 5e6);
+  EXPECT_DOUBLE_EQ(predict(c, d).launchSeconds, 5 * 1e-4);
+  c.triangles = 0, c.outsideTriangles = 0, c.fragments = 0;  // compute: every dispatch a submission, no draw cost
+  EXPECT_DOUBLE_EQ(predict(c, device(false)).launchSeconds, 5 * 1e-4 + 1 * 0.0);
+}
+
 TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   PassCounts c;
   c.dispatches = 1;

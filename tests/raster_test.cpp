@@ -451,3 +451,34 @@ TEST(Raster, SpanningTrianglesHoldAPixelCentreRow) {
 
 }  // namespace
 
+
+namespace {
+TEST(Raster, TrianglesOutsideAClipPlaneAreCountedOnBothSetups) {
+  // RasterStats::trianglesOutside (the performance model charges a triangle rejected before set-up at its own cost):
+  // a triangle behind the far plane, one beyond x = w (right of the view: outside where the device clips x and y, the
+  // draw module; a guard-band device rejects it at set-up instead, culled) and one straddling the right border (not
+  // outside) through lavapipe's and SwiftShader's set-up.
+  for (const emu::DeviceProfile* p : {&emu::lavapipeProfile(), &emu::swiftshaderProfile()}) {
+    const float right[12] = {1.5f, -0.5f, 0.5f, 1.0f, 2.5f, -0.5f, 0.5f, 1.0f, 2.0f, 0.5f, 0.5f, 1.0f};
+    const float far[12] = {-0.5f, -0.5f, 1.5f, 1.0f, 0.5f, -0.5f, 1.5f, 1.0f, 0.0f, 0.5f, 1.5f, 1.0f};
+    const float straddle[12] = {0.5f, -0.5f, 0.5f, 1.0f, 1.5f, -0.5f, 0.5f, 1.0f, 1.0f, 0.5f, 0.5f, 1.0f};
+    const float vary[3] = {0, 0, 0};
+    const uint32_t idx[3] = {0, 1, 2};
+    const bool xy = p->raster.clip == emu::DeviceProfile::Raster::Clip::DrawModule;
+    size_t outside = 0, frags = 0;
+    for (const float* clip : {right, far, straddle}) {
+      emu::Framebuffer fb(32, 32, 1);
+      emu::RasterStats st;
+      emu::DrawInput in{clip, vary, 1, idx, 1};
+      emu::draw(*p, fb, in, [&](const emu::Quad&, float (*out)[4]) { for (int i = 0; i < 4; ++i) out[0][i] = 1; }, &st);
+      outside += st.trianglesOutside, frags += st.fragments;
+      if (clip == straddle) EXPECT_EQ(st.trianglesOutside, 0u) << p->name;
+      if (clip == far) EXPECT_EQ(st.trianglesOutside, 1u) << p->name;
+      if (clip == far) EXPECT_EQ(st.trianglesClipped, 1u) << p->name;  // an outside one is in trianglesClipped too
+      if (clip == right) EXPECT_EQ(st.trianglesOutside + st.trianglesCulled, 1u) << p->name;
+    }
+    EXPECT_EQ(outside, xy ? 2u : 1u) << p->name;
+    EXPECT_GT(frags, 0u) << p->name;  // the straddling one covers pixels
+  }
+}
+}  // namespace

@@ -379,7 +379,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
        // same targets as each. The emulator under the device's profile counts their triangles and covered pixels; each
        // empty run's time is removed, and the two equations give the two rates.
       const emu::DeviceProfile& prof = emu::profileForDevice(ctx.deviceName());
-      struct Run { double seconds, triangles, fragments, vertexRuns; };
+      struct Run { double seconds, triangles, fragments, vertexRuns, outside; };
       auto sceneOf = [](Mesh mesh, uint32_t objects) {  // `objects` draws of the mesh, in place
         Scene sc;
         sc.meshes.push_back(std::move(mesh));
@@ -393,15 +393,16 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       };
       // maps depth-only maps of size^2 seen from +y (the shadow pass), or `draws` draws of the mesh into a size^2
       // G-buffer seen from +y (the plane faces the camera; the sphere fills most of the image).
-      auto depthRun = [&](Mesh mesh, uint32_t size, uint32_t maps) {
-        const Scene sc = sceneOf(std::move(mesh), 1);
+      auto depthRun = [&](Mesh mesh, uint32_t size, uint32_t maps, uint32_t objects = 1) {
+        const Scene sc = sceneOf(std::move(mesh), objects);
         const std::vector<Vec3> dirs(maps, Vec3{0.0f, 1.0f, 0.0f});
         ShadowPassVk pass(ctx, sc, size);
         const double t = best.low(fastestAfterWarmUp(5, [&] { pass.run(dirs); return pass.lastMs * 1e-3; }));
         ShadowStats st;
         shadowEmu(sc, dirs, size, prof, &st);
         return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
-                   double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * maps};
+                   double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * maps * objects,
+                   double(st.raster.trianglesOutside)};
       };
       auto gbufferRun = [&](Mesh mesh, uint32_t size, uint32_t draws) {
         Scene sc = sceneOf(std::move(mesh), draws);
@@ -412,7 +413,8 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         GbufferStats st;
         gbufferEmu(sc, prof, &st);
         return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
-                   double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * draws};
+                   double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * draws,
+                   double(st.raster.trianglesOutside)};
       };
       auto flat = [](Mesh m) {  // every vertex at the centre: zero-area triangles, the same bounds as a point
         for (auto& p : m.positions) p = {0.0f, 0.0f, 0.0f};
@@ -426,8 +428,11 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       // a, a0: the triangle-bound run and its empty run; s: a's triangles with the vertices numbered in strips (the same
       // triangles and pixels, fewer vertex routine runs where the device's vertex cache is simulated); b, b0: the
       // coverage-bound run and its empty run; targetBytes: the bytes of b's targets (cleared and copied out).
+      // o: a's mesh out of the view (every triangle outside a clip plane; for the depth-only pipeline, whose maps enclose
+      // the scene, a's own run: no triangle is outside); e1, draws: the empty run a0 with one draw a map instead of
+      // `draws`.
       auto rates = [&](const char* name, const Run& a, const Run& s, const Run& a0, const Run& b, const Run& b0,
-                       double targetBytes) {
+                       double targetBytes, const Run& o, const Run& e1, double draws) {
         // A vertex routine run: the time a and s differ by, over the runs they differ by (0 where not simulated). The
         // triangle-bound equation below uses s, whose runs are the fewer (a noisy a - s moves it least), and the runs
         // never take more than three quarters of s's time (a contended run of a once left no time for the triangles).
@@ -450,8 +455,15 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
           out << "; vertex runs " << a.vertexRuns << " in " << a.seconds * 1e3 << " ms vs " << s.vertexRuns << " strip-numbered in "
               << s.seconds * 1e3 << " ms: " << sv * 1e9 << " ns per run (excluded above)";
         out << "\n";
+        // A triangle outside: o's time less the empty run's, per outside triangle (never above a set-up one's cost); a
+        // draw: the empty runs' difference per draw they differ by.
+        const double so = o.outside > 0.5 * o.triangles ? std::clamp((o.seconds - a0.seconds - sv * (o.vertexRuns - a0.vertexRuns)) / o.outside, 0.0, st) : st;
+        const double sd = draws > 0 ? std::max(a0.seconds - e1.seconds, 0.0) / draws : 0.0;
+        out << "  raster    " << name << ": " << o.outside << " triangles outside the view in " << (o.seconds - a0.seconds) * 1e3
+            << " ms beyond the empty run: " << so * 1e9 << " ns per triangle; " << draws << " more empty draws "
+            << (a0.seconds - e1.seconds) * 1e3 << " ms: " << sd * 1e6 << " us per draw\n";
         // The targets' clear + copy-out per byte (the large empty run less a launch).
-        return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv};
+        return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv, so, sd};
       };
       const uint32_t segs = opts.quick ? 128 : 256, rings = opts.quick ? 64 : 128;
       const Mesh sphere = makeSphere(segs, rings), strips = makeSphereStrips(segs, rings, 8);
@@ -460,14 +472,26 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         const Run a = depthRun(sphere, small, smallMaps), a0 = depthRun(flat(makePlane()), small, smallMaps);
         const Run s = d.vertexCache.entries ? depthRun(strips, small, smallMaps) : a;
         const Run b = depthRun(makePlane(), big, bigMaps), b0 = depthRun(flat(makePlane()), big, bigMaps);
-        d.raster[model::kDepthOnly] = rates("depth-only", a, s, a0, b, b0, double(big) * big * 4 * bigMaps);
+        const uint32_t objects = 16;
+        const Run e16 = depthRun(flat(makePlane()), small, smallMaps, objects);
+        d.raster[model::kDepthOnly] =
+            rates("depth-only", a, s, a0, b, b0, double(big) * big * 4 * bigMaps, a, a0, 0.0);
+        // Per draw: 16 empty draws a map against one (e16 against a0).
+        d.raster[model::kDepthOnly].drawSeconds =
+            std::max(e16.seconds - a0.seconds, 0.0) / (double(objects - 1) * smallMaps);
+        out << "  raster    depth-only: " << (objects - 1) * smallMaps << " more empty draws " << (e16.seconds - a0.seconds) * 1e3
+            << " ms: " << d.raster[model::kDepthOnly].drawSeconds * 1e6 << " us per draw\n";
       }
       {
         const uint32_t small = 64, draws = opts.quick ? 4 : 16, big = opts.quick ? 512 : 1024, bigDraws = 4;
         const Run a = gbufferRun(sphere, small, draws), a0 = gbufferRun(flat(makePlane()), small, draws);
         const Run s = d.vertexCache.entries ? gbufferRun(strips, small, draws) : a;
         const Run b = gbufferRun(makePlane(), big, bigDraws), b0 = gbufferRun(flat(makePlane()), big, bigDraws);
-        d.raster[model::kGbufferRaster] = rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4));
+        Mesh away = sphere;  // the camera looks down -y at x, z in about [-1.2, 1.2]: 10 to the side is out of view
+        for (auto& p : away.positions) p[0] += 10.0f;
+        const Run o = gbufferRun(away, small, draws), e1 = gbufferRun(flat(makePlane()), small, 1);
+        d.raster[model::kGbufferRaster] =
+            rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4), o, e1, double(draws - 1));
       }
     }
     d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +

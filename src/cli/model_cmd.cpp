@@ -148,7 +148,8 @@ std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, co
         << c.invocations << " invocations, " << c.dispatches
         << (c.triangles ? " draws" : " dispatches");
     if (c.triangles) log << ", " << c.triangles << " triangles, " << c.fragments << " fragments, " << c.helperLanes << " helper lanes, "
-                         << c.vertexRuns << " vertex runs, " << c.spanningTriangles << " triangles spanning a pixel row";
+                         << c.vertexRuns << " vertex runs, " << c.spanningTriangles << " triangles spanning a pixel row, "
+                         << c.outsideTriangles << " outside a clip plane, " << c.culledTriangles << " rejected at set-up";
     log << "\n";
     totalP += r.predictedMs;
     rows.push_back(r);

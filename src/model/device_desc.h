@@ -34,9 +34,15 @@ inline constexpr const char* kRasterPipelineNames[kRasterPipelines] = {"depth_on
 /// ALU classes. Target bytes: the render targets cleared and copied out, per second.
 // vertexRunSeconds: one run of the vertex routine the device's post-transform vertex cache starts on a miss
 // (VertexCacheDesc; 0 where the cache is not simulated and vertex work is in the triangle rate).
+// outsideTriangleSeconds: a triangle whose vertices all lie outside one clip plane (emu RasterStats trianglesOutside),
+// which a driver rejects before set-up and binning: its vertices' shading and the clip test (calibrate: the
+// triangle-bound mesh moved out of the view; lavapipe 2026-12: ~0 against ~130 ns a triangle set up).
+// drawSeconds: a draw beyond the pass's first in the same submission (calibrate: 16 empty draws against 1), where the
+// submission itself is one dispatchSeconds.
 struct RasterRates {
   double trianglesPerSecond = 0.0, fragmentsPerSecond = 0.0, targetBytesPerSecond = 0.0;
   double vertexRunSeconds = 0.0;
+  double outsideTriangleSeconds = 0.0, drawSeconds = 0.0;
 };
 
 /// A driver's post-transform vertex cache, as the model simulates it over each draw's index stream

@@ -59,11 +59,16 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
                      c.ops[opcount::kTexStreamMiss] * d.textureStreamSeconds;  // the cache simulation's missed lines
   p.memorySeconds = double(c.bytesRead + c.bytesWritten) / d.bandwidthBytesPerSecond;
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
-  p.rasterSeconds = double(c.triangles) / r.trianglesPerSecond + double(c.fragments) / r.fragmentsPerSecond +
+  const uint64_t outside = std::min(c.outsideTriangles, c.triangles);
+  p.rasterSeconds = double(c.triangles - outside) / r.trianglesPerSecond + double(outside) * r.outsideTriangleSeconds +
+                    double(c.fragments) / r.fragmentsPerSecond +
                     double(c.attachmentBytes) / r.targetBytesPerSecond + double(c.vertexRuns) * r.vertexRunSeconds;
   const uint64_t groups = c.triangles ? 0 : c.workgroups ? c.workgroups : (c.invocations + 63) / 64;
-  p.launchSeconds = double(std::max<uint64_t>(c.dispatches, 1)) * d.dispatchSeconds +
-                    double(c.pipelines) * d.firstDispatchSeconds + double(groups) * d.workgroupSeconds;
+  // A raster pass is one submission of its draws: the first costs a dispatch, each further draw the pipeline's draw cost.
+  const double submissions = c.triangles ? 1.0 : double(std::max<uint64_t>(c.dispatches, 1));
+  const double draws = c.triangles ? double(std::max<uint64_t>(c.dispatches, 1) - 1) : 0.0;
+  p.launchSeconds = submissions * d.dispatchSeconds + draws * r.drawSeconds + double(c.pipelines) * d.firstDispatchSeconds +
+                    double(groups) * d.workgroupSeconds;
   const double terms[5] = {p.aluSeconds, p.textureSeconds, p.memorySeconds, p.rasterSeconds, p.launchSeconds};
   const char* names[5] = {"alu", "texture", "memory", "raster", "launch"};
   const int top = int(std::max_element(terms, terms + 5) - terms);

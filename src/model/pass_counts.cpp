@@ -42,6 +42,8 @@ void addRaster(PassCounts& c, const emu::RasterStats& r) {
   c.triangles += r.trianglesIn;
   c.fragments += r.fragments;
   c.spanningTriangles += r.trianglesSpanning;
+  c.outsideTriangles += r.trianglesOutside;
+  c.culledTriangles += r.trianglesCulled;
   c.helperLanes += 4 * r.quads - r.fragments;
 }
 

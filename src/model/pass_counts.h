@@ -33,6 +33,9 @@ struct PassCounts {
   uint64_t triangles = 0, fragments = 0, helperLanes = 0;  // raster passes: triangles in, covered pixels, quad helpers
   RasterPipeline rasterPipeline = kDepthOnly;              // raster passes: whose rates they run at
   uint64_t spanningTriangles = 0;  // raster passes: triangles whose extent holds a pixel-centre row (emu RasterStats)
+  // raster passes: triangles entirely outside one clip plane (rejected before set-up) and triangles set-up rejected
+  // (zero area, back-facing where culled, no pixel centre inside the target)
+  uint64_t outsideTriangles = 0, culledTriangles = 0;
   uint64_t vertexRuns = 0;  // raster passes: vertex routine runs the device's vertex cache starts (model/vertex_cache.h)
   // One core's time for the pass's 8-lane operations on the device's core model (CoreModel on), 0 when not scheduled
   // (GPUs; passes counted one lane at a time: vertex and fragment stages, the SH reduction).
