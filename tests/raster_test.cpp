@@ -18,12 +18,12 @@ namespace {
 const emu::DeviceProfile& dev() { return emu::lavapipeProfile(); }
 
 // One triangle (clip-space xyzw x 3) into `fb`, every covered pixel's single output 1; its raster statistics.
-emu::RasterStats drawOneTriangle(emu::Framebuffer& fb, const float clip[12]) {
+emu::RasterStats drawOneTriangle(emu::Framebuffer& fb, const float clip[12], const emu::DeviceProfile& profile = dev()) {
   const float vary[3] = {0, 0, 0};
   const uint32_t idx[3] = {0, 1, 2};
   emu::RasterStats st;
   emu::DrawInput in{clip, vary, 1, idx, 1};
-  emu::draw(dev(), fb, in, [&](const emu::Quad&, float (*out)[4]) { for (int i = 0; i < 4; ++i) out[0][i] = 1; }, &st);
+  emu::draw(profile, fb, in, [&](const emu::Quad&, float (*out)[4]) { for (int i = 0; i < 4; ++i) out[0][i] = 1; }, &st);
   return st;
 }
 
@@ -449,10 +449,6 @@ TEST(Raster, SpanningTrianglesHoldAPixelCentreRow) {
   EXPECT_EQ(spanning(3.2f, 20.9f), 1u);
 }
 
-}  // namespace
-
-
-namespace {
 TEST(Raster, TrianglesOutsideAClipPlaneAreCountedOnBothSetups) {
   // RasterStats::trianglesOutside (the performance model charges a triangle rejected before set-up at its own cost):
   // a triangle behind the far plane, one beyond x = w (right of the view: outside where the device clips x and y, the
@@ -462,15 +458,11 @@ TEST(Raster, TrianglesOutsideAClipPlaneAreCountedOnBothSetups) {
     const float right[12] = {1.5f, -0.5f, 0.5f, 1.0f, 2.5f, -0.5f, 0.5f, 1.0f, 2.0f, 0.5f, 0.5f, 1.0f};
     const float far[12] = {-0.5f, -0.5f, 1.5f, 1.0f, 0.5f, -0.5f, 1.5f, 1.0f, 0.0f, 0.5f, 1.5f, 1.0f};
     const float straddle[12] = {0.5f, -0.5f, 0.5f, 1.0f, 1.5f, -0.5f, 0.5f, 1.0f, 1.0f, 0.5f, 0.5f, 1.0f};
-    const float vary[3] = {0, 0, 0};
-    const uint32_t idx[3] = {0, 1, 2};
     const bool xy = p->raster.clip == emu::DeviceProfile::Raster::Clip::DrawModule;
     size_t outside = 0, frags = 0;
     for (const float* clip : {right, far, straddle}) {
       emu::Framebuffer fb(32, 32, 1);
-      emu::RasterStats st;
-      emu::DrawInput in{clip, vary, 1, idx, 1};
-      emu::draw(*p, fb, in, [&](const emu::Quad&, float (*out)[4]) { for (int i = 0; i < 4; ++i) out[0][i] = 1; }, &st);
+      const emu::RasterStats st = drawOneTriangle(fb, clip, *p);
       outside += st.trianglesOutside, frags += st.fragments;
       if (clip == straddle) EXPECT_EQ(st.trianglesOutside, 0u) << p->name;
       if (clip == far) EXPECT_EQ(st.trianglesOutside, 1u) << p->name;

@@ -429,10 +429,9 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       // triangles and pixels, fewer vertex routine runs where the device's vertex cache is simulated); b, b0: the
       // coverage-bound run and its empty run; targetBytes: the bytes of b's targets (cleared and copied out).
       // o: a's mesh out of the view (every triangle outside a clip plane; for the depth-only pipeline, whose maps enclose
-      // the scene, a's own run: no triangle is outside); e1, draws: the empty run a0 with one draw a map instead of
-      // `draws`.
+      // the scene, a's own run: no triangle is outside); eMany, eFew: two empty runs that differ by `draws` draws.
       auto rates = [&](const char* name, const Run& a, const Run& s, const Run& a0, const Run& b, const Run& b0,
-                       double targetBytes, const Run& o, const Run& e1, double draws) {
+                       double targetBytes, const Run& o, const Run& eMany, const Run& eFew, double draws) {
         // A vertex routine run: the time a and s differ by, over the runs they differ by (0 where not simulated). The
         // triangle-bound equation below uses s, whose runs are the fewer (a noisy a - s moves it least), and the runs
         // never take more than three quarters of s's time (a contended run of a once left no time for the triangles).
@@ -457,11 +456,12 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         out << "\n";
         // A triangle outside: o's time less the empty run's, per outside triangle (never above a set-up one's cost); a
         // draw: the empty runs' difference per draw they differ by.
-        const double so = o.outside > 0.5 * o.triangles ? std::clamp((o.seconds - a0.seconds - sv * (o.vertexRuns - a0.vertexRuns)) / o.outside, 0.0, st) : st;
-        const double sd = draws > 0 ? std::max(a0.seconds - e1.seconds, 0.0) / draws : 0.0;
-        out << "  raster    " << name << ": " << o.outside << " triangles outside the view in " << (o.seconds - a0.seconds) * 1e3
+        const double to = o.seconds - a0.seconds - sv * (o.vertexRuns - a0.vertexRuns);
+        const double so = o.outside > 0.5 * o.triangles ? std::clamp(to / o.outside, 0.0, st) : st;
+        const double sd = std::max(eMany.seconds - eFew.seconds, 0.0) / draws;
+        out << "  raster    " << name << ": " << o.outside << " triangles outside the view in " << to * 1e3
             << " ms beyond the empty run: " << so * 1e9 << " ns per triangle; " << draws << " more empty draws "
-            << (a0.seconds - e1.seconds) * 1e3 << " ms: " << sd * 1e6 << " us per draw\n";
+            << (eMany.seconds - eFew.seconds) * 1e3 << " ms: " << sd * 1e6 << " us per draw\n";
         // The targets' clear + copy-out per byte (the large empty run less a launch).
         return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv, so, sd};
       };
@@ -472,15 +472,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         const Run a = depthRun(sphere, small, smallMaps), a0 = depthRun(flat(makePlane()), small, smallMaps);
         const Run s = d.vertexCache.entries ? depthRun(strips, small, smallMaps) : a;
         const Run b = depthRun(makePlane(), big, bigMaps), b0 = depthRun(flat(makePlane()), big, bigMaps);
-        const uint32_t objects = 16;
+        const uint32_t objects = 16;  // empty draws a map, against a0's one
         const Run e16 = depthRun(flat(makePlane()), small, smallMaps, objects);
-        d.raster[model::kDepthOnly] =
-            rates("depth-only", a, s, a0, b, b0, double(big) * big * 4 * bigMaps, a, a0, 0.0);
-        // Per draw: 16 empty draws a map against one (e16 against a0).
-        d.raster[model::kDepthOnly].drawSeconds =
-            std::max(e16.seconds - a0.seconds, 0.0) / (double(objects - 1) * smallMaps);
-        out << "  raster    depth-only: " << (objects - 1) * smallMaps << " more empty draws " << (e16.seconds - a0.seconds) * 1e3
-            << " ms: " << d.raster[model::kDepthOnly].drawSeconds * 1e6 << " us per draw\n";
+        d.raster[model::kDepthOnly] = rates("depth-only", a, s, a0, b, b0, double(big) * big * 4 * bigMaps, a, e16, a0,
+                                            double(objects - 1) * smallMaps);
       }
       {
         const uint32_t small = 64, draws = opts.quick ? 4 : 16, big = opts.quick ? 512 : 1024, bigDraws = 4;
@@ -491,7 +486,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         for (auto& p : away.positions) p[0] += 10.0f;
         const Run o = gbufferRun(away, small, draws), e1 = gbufferRun(flat(makePlane()), small, 1);
         d.raster[model::kGbufferRaster] =
-            rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4), o, e1, double(draws - 1));
+            rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4), o, a0, e1, double(draws - 1));
       }
     }
     d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
