@@ -14,9 +14,11 @@
 #include "cli/render.h"
 #include "scene/scene.h"
 #include "cli/verify/verify.h"
+#include "util/output_file.h"
 #include "vk/context.h"
 
 int main(int argc, char** argv) {
+  shadetwin::installInterruptCleanup();  // SIGINT / SIGTERM remove every output's temporary (util/output_file.h)
   CLI::App app{"shadetwin: a bit-exact CPU twin of a Vulkan image-based-lighting renderer"};
   app.require_subcommand(1);
   shadetwin::VerifyOptions vo;

@@ -25,6 +25,7 @@
 #include "passes/visibility.h"
 #include "scene/scene.h"
 #include "util/timer.h"
+#include "util/output_file.h"
 #include "vk/context.h"
 
 namespace shadetwin {
@@ -189,7 +190,7 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
     log << "model " << opts.scene << ": " << scene.width << "x" << scene.height << ", technique " << scene.technique << "; device "
         << desc.device << " (" << descPath << ", " << (desc.verified ? "measured" : "public figures, unverified") << ")\n";
     std::ostringstream quiet;
-    const EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+    const EnvironmentMap env = loadEnvironment(scene.environment, quiet, scene.envClampNegative);
     bool same = true;
     modelFrame(scene, opts.scene, env, desc, ctx.get(), dev, opts.repeat, log, same);
     return same ? 0 : 1;
@@ -225,7 +226,7 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
         for (const char* t : {"fis", "mirror", "env", "kdtree-mis"})
           if (base.technique != t) techniques.push_back(t);
       std::ostringstream quiet;
-      const EnvironmentMap env = loadEnvironment(base.environment, quiet);
+      const EnvironmentMap env = loadEnvironment(base.environment, quiet, base.envClampNegative);
       for (const std::string& t : techniques) {
         Scene scene;
         try {
@@ -255,17 +256,15 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
     perPass[r.pass].first += e, ++perPass[r.pass].second;
   }
   if (!opts.csv.empty()) {
-    const std::string tmp = opts.csv + ".tmp";
+    OutputFile file(opts.csv);
     {
-      std::ofstream f(tmp);
-      if (!f) throw std::runtime_error(opts.csv + ": cannot write");
+      std::ostream& f = file.stream();
       f << "scene,technique,device,pass,bound,predicted_ms,measured_ms,error_pct\n";
       for (const Row& r : all)
         f << r.scene << "," << r.technique << "," << r.device << "," << r.pass << "," << r.bound << "," << r.predictedMs << ","
           << r.measuredMs << "," << (r.measuredMs > 0 ? 100.0 * (r.predictedMs - r.measuredMs) / r.measuredMs : 0.0) << "\n";
-      if (!f) throw std::runtime_error(opts.csv + ": write failed");
     }
-    std::filesystem::rename(tmp, opts.csv);
+    file.commit();
     log << "wrote " << opts.csv << "\n";
   }
   log << std::fixed << std::setprecision(1);

@@ -15,6 +15,7 @@
 
 #include "emu/device_profile.h"
 #include "emu/format.h"
+#include "util/output_file.h"
 #include "util/image_io.h"
 #include "passes/mips.h"
 #include "passes/shade.h"
@@ -94,11 +95,12 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   const emu::DeviceProfile& dev = emu::profileByName(opts.profile);
   log << "scene " << opts.scene << ": " << scene.objects.size() << " objects, " << scene.triangles() << " triangles, "
       << scene.width << "x" << scene.height << ", environment " << scene.environment << "\n";
-  t0 = Clock::now();
-  const EnvironmentMap env0 = loadEnvironment(scene.environment, log);
-  const double tEnv = msSince(t0);
   std::string out = opts.out;
   if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + ".exr";
+  checkWritable(out);  // a missing or unwritable output folder fails now, not after the render
+  t0 = Clock::now();
+  const EnvironmentMap env0 = loadEnvironment(scene.environment, log, scene.envClampNegative);
+  const double tEnv = msSince(t0);
   log << std::fixed << std::setprecision(1);
   log << "  load scene + meshes      " << std::setw(8) << tScene << " ms\n";
   log << "  environment + MIP chain  " << std::setw(8) << tEnv << " ms  (" << env0.width << "x" << env0.height << ", "

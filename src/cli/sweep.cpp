@@ -25,6 +25,7 @@
 #include "inputs/environment.h"
 #include "scene/scene.h"
 #include "util/plot.h"
+#include "util/output_file.h"
 #include "util/timer.h"
 #include "vk/context.h"
 
@@ -77,8 +78,8 @@ namespace {
 // The sampler study of the MIS techniques (issue 5, item 5): env_sampling.csv.
 void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::DeviceProfile& dev, vk::Context* ctx, std::ostream& log) {
   const std::string path = (std::filesystem::path(opts.out) / "env_sampling.csv").string();
-  std::ofstream csv(path);
-  if (!csv) throw std::runtime_error("sweep: cannot write " + path);
+  OutputFile csvFile(path);
+  std::ostream& csv = csvFile.stream();
   csv << "map,width,height,method,blocks,alpha,l1_misfit,build_ms,sampling_bytes,pdf_bytes,packed_kd_bytes,inversion_bytes,"
          "compression_packed,compression_stored,samples_per_s_scalar,samples_per_s_simd,samples_per_s_vulkan,"
          "ratio_vs_inversion_simd,ratio_vs_inversion_vulkan,checksums_equal\n";
@@ -124,6 +125,7 @@ void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::De
       }
     }
   }
+  csvFile.commit();
   log << "  wrote " << path << "\n";
 }
 
@@ -145,7 +147,7 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   const std::vector<uint32_t> visMaps = parseCounts(opts.visMaps, "--vis-maps", "a map count", 0, 1024);
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+  EnvironmentMap env = loadEnvironment(scene.environment, quiet, scene.envClampNegative);
   log << "sweep " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << scene.environment << "\n";
 
   // Reference: given, or rendered here (MIS, no visibility: the techniques have none).
@@ -177,8 +179,8 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   const std::vector<uint8_t>& covered = builds.covered;
 
   const std::string csvPath = (std::filesystem::path(opts.out) / "sweep.csv").string();
-  std::ofstream csv(csvPath);
-  if (!csv) throw std::runtime_error("sweep: cannot write " + csvPath);
+  OutputFile csvFile(csvPath);
+  std::ostream& csv = csvFile.stream();
   csv << "technique,samples,ms_emu,ms_vulkan,rmse,relmse,psnr,bit_identical,values\n";
   std::vector<PlotSeries> bySamples, byTime;
   log << std::fixed;
@@ -220,8 +222,8 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
     // The SH visibility study: fis at the scene's sample count with K maps (the scene's other
     // visibility settings), each build its own maps, fit and filter of its own G-buffer.
     const std::string vPath = (std::filesystem::path(opts.out) / "visibility.csv").string();
-    std::ofstream vcsv(vPath);
-    if (!vcsv) throw std::runtime_error("sweep: cannot write " + vPath);
+    OutputFile vcsvFile(vPath);
+    std::ostream& vcsv = vcsvFile.stream();
     vcsv << "maps,samples,rank,ms_shadow_emu,ms_fit_emu,ms_filter_emu,ms_shade_emu,ms_shadow_vulkan,ms_fit_vulkan,ms_filter_vulkan,"
             "ms_shade_vulkan,rmse,relmse,psnr,rmse_unfiltered,psnr_unfiltered,bit_identical,values\n";
     scene.technique = "fis";
@@ -289,6 +291,7 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
       log << "\n";
     }
     scene.visMaps = visMapsScene;
+    vcsvFile.commit();
     log << "wrote " << vPath << "\n";
   }
   const std::string stem = std::filesystem::path(opts.scene).stem().string();
@@ -298,6 +301,7 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   std::string w2 = writeLogLogPlot(p2, byTime, {"RMSE vs emulator shading time, " + stem, "ms per frame (emu)", "RMSE", false});
   if (!w1.empty()) log << "  warning: " << w1 << "\n";
   if (!w2.empty()) log << "  warning: " << w2 << "\n";
+  csvFile.commit();
   log << "wrote " << csvPath << ", " << p1 << ", " << p2 << "\n";
   return 0;
 }

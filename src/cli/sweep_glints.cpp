@@ -26,6 +26,7 @@
 #include "reference/glints_gxd.h"
 #include "util/compare.h"
 #include "util/plot.h"
+#include "util/output_file.h"
 #include "util/timer.h"
 #include "reference/ref_environment.h"
 #include "vk/context.h"
@@ -45,7 +46,7 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   const std::vector<uint32_t> orders = parseCounts(opts.glintOrders, "--glint-orders", "a degree", 0, 64);
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+  EnvironmentMap env = loadEnvironment(scene.environment, quiet, scene.envClampNegative);
   log << "sweep " << opts.scene << " (glints): " << scene.width << "x" << scene.height << ", " << scene.environment << "\n";
   SweepBuilds builds = sweepBuilds(opts, scene, log);
   const emu::DeviceProfile* dev = builds.dev;
@@ -62,8 +63,8 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
     return glintGxdImage(scene, g.texels.data(), g.width, g.height, renv, o);
   };
   const std::string csvPath = (std::filesystem::path(opts.out) / "glints.csv").string();
-  std::ofstream csv(csvPath);
-  if (!csv) throw std::runtime_error("sweep: cannot write " + csvPath);
+  OutputFile csvFile(csvPath);
+  std::ostream& csv = csvFile.stream();
   csv << "technique,param,ms_emu,ms_vulkan,ms_inputs_emu,ms_inputs_vulkan,rmse,relmse,psnr,bit_identical,values\n";
   log << std::fixed;
   std::vector<float> ref;
@@ -300,6 +301,7 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   const std::string p = (std::filesystem::path(opts.out) / "rmse_vs_time.png").string();
   const std::string w = writeLogLogPlot(p, {gxdSeries, glSeries}, {"RMSE vs emulator time, glints vs G x D", "ms per frame (emu)", "RMSE", false});
   if (!w.empty()) log << "  warning: " << w << "\n";
+  csvFile.commit();
   log << "wrote " << csvPath << ", " << p << "\n";
   return 0;
 }

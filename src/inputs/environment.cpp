@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include "emu/format.h"
 #include "passes/mips.h"
@@ -9,18 +11,27 @@
 
 namespace shadetwin {
 
-EnvironmentMap environmentFromLevel0(std::vector<float> texels, uint32_t width, uint32_t height) {
-  EnvironmentMap env;
-  // Policy for the source HDRI (docs/DESIGN.md): NaN and infinite texels become 0 and are counted;
-  // negative texels are kept (they are real data in the CC0 maps) and counted.
+std::array<size_t, 2> sanitizeTexels(std::vector<float>& texels, bool clampNegative) {
+  std::array<size_t, 2> n{0, 0};
   for (float& v : texels) {
     if (!std::isfinite(v)) {
       v = 0.0f;
-      ++env.nonFinite;
+      ++n[0];
     } else if (v < 0.0f) {
-      ++env.negative;
+      ++n[1];
+      if (clampNegative) v = 0.0f;
     }
   }
+  return n;
+}
+
+EnvironmentMap environmentFromLevel0(std::vector<float> texels, uint32_t width, uint32_t height, bool clampNegative) {
+  if (width == 0 || height == 0 || texels.size() != size_t(width) * height * 4)
+    throw std::invalid_argument("environment: " + std::to_string(width) + "x" + std::to_string(height) + " with " +
+                                std::to_string(texels.size()) + " values (expected a non-empty RGBA image)");
+  EnvironmentMap env;
+  const auto n = sanitizeTexels(texels, clampNegative);
+  env.nonFinite = n[0], env.negative = n[1], env.negativeClamped = clampNegative;
   auto levels = mipChainCpu(texels, width, height, 1, 8);
   env.texture = std::make_unique<emu::Texture>(packTexture(emu::Format::RGBA32F, width, height, 1, levels));
   env.levels = std::move(levels);
@@ -29,10 +40,11 @@ EnvironmentMap environmentFromLevel0(std::vector<float> texels, uint32_t width, 
   return env;
 }
 
-EnvironmentMap loadEnvironment(const std::string& path, std::ostream& log) {
+EnvironmentMap loadEnvironment(const std::string& path, std::ostream& log, bool clampNegative) {
   ImageRGBA img = loadImageRGBA(path);
-  EnvironmentMap env = environmentFromLevel0(std::move(img.texels), img.width, img.height);
-  if (env.nonFinite) log << "  environment: " << env.nonFinite << " non-finite texel values replaced by 0\n";
+  EnvironmentMap env = environmentFromLevel0(std::move(img.texels), img.width, img.height, clampNegative);
+  if (env.nonFinite) log << "  environment: " << path << ": " << env.nonFinite << " non-finite texel values replaced by 0\n";
+  if (env.negative && clampNegative) log << "  environment: " << path << ": " << env.negative << " negative texel values clamped to 0\n";
   return env;
 }
 
@@ -56,7 +68,7 @@ EnvironmentMap rotateEnvironment(const EnvironmentMap& env, double degrees) {
   for (uint32_t y = 0; y < H; ++y)
     for (uint32_t x = 0; x < W; ++x)
       std::memcpy(&dst[4 * (size_t(y) * W + (x + W - s) % W)], &src[4 * (size_t(y) * W + x)], 16);
-  return environmentFromLevel0(std::move(dst), W, H);
+  return environmentFromLevel0(std::move(dst), W, H, env.negativeClamped);
 }
 
 }  // namespace shadetwin

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "util/output_file.h"
+
 namespace shadetwin::model {
 
 namespace {
@@ -169,17 +171,9 @@ std::string deviceDescJson(const DeviceDesc& d) {
 }
 
 void saveDeviceDesc(const DeviceDesc& d, const std::string& path) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    if (!f) throw std::runtime_error(path + ": cannot write the device description");
-    f << deviceDescJson(d);
-    if (!f) throw std::runtime_error(path + ": write failed");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw std::runtime_error(path + ": cannot rename the finished file into place");
-  }
+  OutputFile file(path);
+  file.stream() << deviceDescJson(d);
+  file.commit();
 }
 
 }  // namespace shadetwin::model

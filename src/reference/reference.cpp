@@ -18,6 +18,8 @@
 #include <stdexcept>
 
 #include "util/image_io.h"
+#include "util/output_file.h"
+#include "inputs/environment.h"
 #include "reference/reference_brdf.h"
 #include "reference/ref_environment.h"
 #include "inputs/env_kdtree.h"
@@ -322,14 +324,15 @@ int referenceCommand(const ReferenceCommandOptions& opts, std::ostream& log) {
   Scene scene = loadScene(opts.scene);
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
+  const std::string out = opts.out.empty() ? std::filesystem::path(opts.scene).stem().string() + "_ref.exr" : opts.out;
+  checkWritable(out);  // before the render: a missing output folder costs nothing
   ImageRGBA img = loadImageRGBA(scene.environment);
-  size_t nonFinite = 0;
-  for (float& v : img.texels)
-    if (!std::isfinite(v)) v = 0.0f, ++nonFinite;  // same policy as the renderer (render.cpp loadEnvironment)
+  const auto [nonFinite, negative] = sanitizeTexels(img.texels, scene.envClampNegative);  // the renderer's policy
   log << "reference " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << opts.render.spp
       << " spp (x2 directions, MIS), visibility " << (opts.render.visibility ? "on" : "off") << ", seed " << opts.render.seed
       << "\n";
   if (nonFinite) log << "  environment: " << nonFinite << " non-finite texel values replaced by 0\n";
+  if (negative && scene.envClampNegative) log << "  environment: " << negative << " negative texel values clamped to 0\n";
   ProgressBar bar(std::cerr, "reference");
   ReferenceOptions ro = opts.render;
   ro.progress = [&](double f) { bar.update(f); };
@@ -350,8 +353,6 @@ int referenceCommand(const ReferenceCommandOptions& opts, std::ostream& log) {
   }
   bar.finish();
   const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::string out = opts.out;
-  if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + "_ref.exr";
   const std::string png = std::filesystem::path(out).replace_extension(".png").string();
   writeExr(out, scene.width, scene.height, image);
   writePngToneMapped(png, scene.width, scene.height, image);

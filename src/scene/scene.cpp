@@ -73,7 +73,7 @@ float dot3(Vec3 a, Vec3 b) { return float(v3::dot(a, b)); }
 struct Reader {
   std::string file;
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw SceneError(file + ": " + key + ": " + what);
+    throw SceneError(file + ": " + (key.empty() ? std::string("top level") : key) + ": " + what);
   }
   void keys(const json& j, const std::string& where, std::set<std::string> allowed) const {
     if (!j.is_object()) fail(where, "expected an object");
@@ -209,6 +209,12 @@ void setTechnique(Scene& scene, const std::string& technique) {
 Scene loadScene(const std::string& path) {
   std::ifstream f(path);
   if (!f) throw SceneError(path + ": cannot open scene file");
+  // A scene file is a few KiB (meshes and images are files of their own): refuse a huge one before parsing it.
+  std::error_code sizeError;
+  const auto bytes = fs::file_size(path, sizeError);
+  if (!sizeError && bytes > kMaxSceneFileBytes)
+    throw SceneError(path + ": scene file of " + std::to_string(bytes >> 20) + " MiB (at most " +
+                     std::to_string(kMaxSceneFileBytes >> 20) + " MiB: meshes and images belong in files of their own)");
   json j;
   try {
     j = json::parse(f, nullptr, true, /*ignore_comments=*/true);
@@ -247,9 +253,13 @@ Scene loadScene(const std::string& path) {
   if (!j.contains("environment")) R.fail("environment", "missing (expected {\"file\": \"../assets/hdri/forest.exr\"})");
   {
     const json& e = j["environment"];
-    R.keys(e, "environment", {"file", "intensity"});
+    R.keys(e, "environment", {"file", "intensity", "negative"});
     s.environment = R.existingPath(dir, R.string(e, "environment.file", "", true), "environment.file");
     s.environmentIntensity = R.number(e, "environment.intensity", 1, 0, 1e9f);
+    const std::string negative = R.string(e, "environment.negative", "keep");
+    if (negative != "keep" && negative != "clamp")
+      R.fail("environment.negative", "unknown policy '" + negative + "' (expected keep or clamp)");
+    s.envClampNegative = negative == "clamp";
   }
   s.technique = R.string(j, "technique", "fis");
   if (!isTechnique(s.technique))

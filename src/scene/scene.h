@@ -102,6 +102,7 @@ struct Scene {
   Camera camera;
   std::string environment;        // resolved path of the EXR/HDR
   float environmentIntensity = 1.0f;
+  bool envClampNegative = false;  // "environment": {"negative": "clamp"}: negative texels set to 0 (default: kept)
   std::string technique = "fis";  // shading technique, see kTechniques
   // Filtered importance sampling ("fis" block): samples per pixel, the level constant K of
   // l = max(log4(K w h / (N p r)), 0), and the face size S of the 2S x S paraboloid atlas.
@@ -146,6 +147,8 @@ struct Scene {
   size_t triangles() const;
 };
 
+/// The largest scene file loadScene reads (bytes).
+inline constexpr uint64_t kMaxSceneFileBytes = uint64_t(16) << 20;
 Scene loadScene(const std::string& path);
 /// A command line's --technique: sets scene.technique, or throws std::invalid_argument for an unknown
 /// technique (listing the known ones) or a glints technique on a scene with a material lacking a glints

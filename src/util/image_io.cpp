@@ -1,5 +1,7 @@
 #include "util/image_io.h"
 
+#include "util/output_file.h"
+
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
@@ -16,8 +18,35 @@ ImageRGBA loadImageRGBA(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw FileError(path + ": cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw FileError(path + ": image has zero size");
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw FileError(path + ": image has zero size (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ", " +
+                    std::to_string(spec.nchannels) + " channels)");
+  // Decoded as float RGBA (and the file's channels once more while decoding): refuse what this machine cannot hold
+  // before allocating it, with the memory it would need.
+  const double need = double(spec.width) * spec.height * (16.0 + 4.0 * spec.nchannels);
+  if (need > kMaxImageBytes)
+    throw FileError(path + ": image " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " would need " +
+                    std::to_string(int(need / double(1 << 20))) + " MiB to load (limit " + std::to_string(int(kMaxImageBytes / double(1 << 20))) +
+                    " MiB)");
+  // Channels by name (OpenImageIO's names: R, G, B, A; Y for luminance): RGB(A) as they are; one channel (any name) or Y
+  // (with A) as gray; anything else is an error naming the channels found.
   const int nc = spec.nchannels;
+  auto channel = [&](const char* name) {
+    for (int c = 0; c < nc; ++c)
+      if (spec.channelnames.size() > size_t(c) && spec.channelnames[size_t(c)] == name) return c;
+    return -1;
+  };
+  int src[4] = {channel("R"), channel("G"), channel("B"), channel("A")};
+  if (src[0] < 0 || src[1] < 0 || src[2] < 0) {
+    const int y = nc == 1 ? 0 : channel("Y");
+    if (y < 0) {
+      std::string names;
+      for (int c = 0; c < nc; ++c) names += (c ? ", " : "") + (size_t(c) < spec.channelnames.size() ? spec.channelnames[size_t(c)] : "?");
+      throw FileError(path + ": " + std::to_string(nc) + " channels (" + names +
+                      "): expected R, G, B (optionally A) or a single gray channel");
+    }
+    src[0] = src[1] = src[2] = y;
+  }
   std::vector<float> raw(size_t(spec.width) * spec.height * nc);
   if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data()))
     throw FileError(path + ": cannot decode pixels: " + in->geterror());
@@ -26,12 +55,10 @@ ImageRGBA loadImageRGBA(const std::string& path) {
   img.height = uint32_t(spec.height);
   img.texels.resize(size_t(img.width) * img.height * 4);
   for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
-    const float* p = &raw[i * nc];
+    const float* p = &raw[i * size_t(nc)];
     float* o = &img.texels[i * 4];
-    o[0] = p[0];
-    o[1] = nc > 1 ? p[1] : (nc == 1 ? p[0] : 0.0f);
-    o[2] = nc > 2 ? p[2] : (nc == 1 ? p[0] : 0.0f);
-    o[3] = nc > 3 ? p[3] : 1.0f;
+    for (int c = 0; c < 3; ++c) o[c] = p[src[c]];
+    o[3] = src[3] >= 0 ? p[src[3]] : 1.0f;
   }
   return img;
 }
@@ -40,23 +67,13 @@ namespace {
 
 void writeImage(const std::string& path, uint32_t width, uint32_t height, int channels, OIIO::TypeDesc type,
                 const void* data) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir)) throw FileError(path + ": cannot write: directory " + dir.string() + " does not exist");
-  const fs::path tmp = dir / (".tmp-" + target.filename().string());
+  OutputFile file(path);  // a temporary in the same folder, renamed into place when complete
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw FileError(path + ": cannot write: no image writer for this file extension");
   OIIO::ImageSpec spec(int(width), int(height), channels, type);
-  if (!out->open(tmp.string(), spec) || !out->write_image(type, data) || !out->close()) {
-    std::string err = out->geterror();
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw FileError(path + ": cannot write: " + err);
-  }
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) throw FileError(path + ": cannot write: " + ec.message());
+  if (!out->open(file.tempPath(), spec) || !out->write_image(type, data) || !out->close())
+    throw FileError(path + ": cannot write: " + out->geterror());
+  file.commit();
 }
 
 }  // namespace

@@ -16,9 +16,11 @@ struct FileError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Loads any OpenImageIO-readable file as float RGBA (missing channels: 0, alpha 1). Throws FileError
-/// naming the path and the problem (missing file, unreadable format, zero size); for a file under
-/// assets/ the message says how to fetch it.
+/// The most a loaded image may take (decoded RGBA32F plus the file's channels): 8 GiB, a third of this machine's memory.
+inline constexpr double kMaxImageBytes = 8.0 * 1024 * 1024 * 1024;
+/// Loads any OpenImageIO-readable file as float RGBA: channels R, G, B (A, else alpha 1) by name, or one gray channel
+/// (or Y) replicated. Throws FileError naming the path and the problem (missing file, unreadable format, zero size,
+/// other channel sets, more than kMaxImageBytes); for a file under assets/ the message says how to fetch it.
 ImageRGBA loadImageRGBA(const std::string& path);
 
 /// Writes float RGBA as an OpenEXR file (half... no: 32-bit float channels R, G, B, A). The file is

@@ -10,6 +10,8 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include "util/output_file.h"
+
 namespace shadetwin {
 namespace {
 constexpr int kW = 900, kH = 600, kLeft = 90, kRight = 200, kTop = 50, kBottom = 70;
@@ -84,7 +86,9 @@ std::string writeLogLogPlot(const std::string& path, const std::vector<PlotSerie
   text(kLeft, kTop - 18, opts.title, 20, black);
   text(kLeft + (kW - kLeft - kRight) / 2 - 60, kH - 15, opts.xLabel, 18, black);
   text(kW - kRight + 15, kH - kBottom - 10, opts.yLabel + " (log)", 16, black);
-  if (!img.write(path)) throw std::runtime_error("plot " + path + ": " + img.geterror());
+  OutputFile file(path);
+  if (!img.write(file.tempPath())) throw std::runtime_error("plot " + path + ": " + img.geterror());
+  file.commit();
   return fontOk ? "" : std::string("no font ") + kFont + ": plot " + path + " written without labels";
 }
 
