@@ -12,7 +12,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     shadetwin::ImageRGBA im = shadetwin::loadImageRGBA(path);
     (void)im;
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {
+    shadetwin::fuzz::rejected(e);
   }
   return 0;
 }

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
+#include <exception>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -35,6 +37,16 @@ inline const std::filesystem::path& workDir() {
     return d;
   }();
   return dir;
+}
+
+/// SHADETWIN_FUZZ_EXPECT_VALID=1 (the seed check in ctest): an input that is rejected is a failure, so every seed is
+/// known to load (the fuzzer starts from inputs that reach past the first check).
+inline void rejected(const std::exception& e) {
+  static const bool strict = std::getenv("SHADETWIN_FUZZ_EXPECT_VALID") != nullptr;
+  if (strict) {
+    std::fprintf(stderr, "seed rejected: %s\n", e.what());
+    std::abort();
+  }
 }
 
 /// Writes the input to <dir>/scenes/<name> and returns that path.

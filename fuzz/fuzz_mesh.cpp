@@ -13,7 +13,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     shadetwin::Mesh m = kind == 0 ? shadetwin::loadNpmMesh(path) : shadetwin::loadGltf(path);
     (void)m;
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {
+    shadetwin::fuzz::rejected(e);
   }
   return 0;
 }

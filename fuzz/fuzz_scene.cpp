@@ -11,7 +11,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     shadetwin::Scene s = shadetwin::loadScene(path);
     (void)s;
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {
+    shadetwin::fuzz::rejected(e);
   }
   return 0;
 }

@@ -27,9 +27,16 @@ using shadetwin::FileError;
 // "../assets/..." resolves as for the shipped scenes).
 const fs::path& dir() {
   static const fs::path d = [] {
-    const fs::path root = fs::path(testing::TempDir()) / "shadetwin_bad_input";
-    fs::remove_all(root);  // what an earlier run left
+    // One folder per process (ctest runs this file's tests as parallel processes), removed when the process ends.
+    const fs::path root = fs::path(testing::TempDir()) / ("shadetwin_bad_input_" + std::to_string(::getpid()));
     fs::create_directories(root / "scenes");
+    static struct Cleanup {
+      fs::path p;
+      ~Cleanup() {
+        std::error_code ec;
+        fs::remove_all(p, ec);
+      }
+    } cleanup{root};
     std::error_code ec;
     fs::create_directory_symlink(fs::path(SHADETWIN_SOURCE_DIR) / "assets", root / "assets", ec);
     return root / "scenes";

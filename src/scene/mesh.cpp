@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -210,10 +211,25 @@ Mesh loadNpmMesh(const std::string& path) {
   Mesh m;
   m.name = path;
   try {
-    for (auto& p : pos) m.positions.push_back({p.at(0).get<float>(), p.at(1).get<float>(), p.at(2).get<float>()});
+    // Each value checked before its conversion (a float cannot hold 1e39, an index is a non-negative integer).
+    for (auto& p : pos) {
+      std::array<float, 3> v{};
+      for (int k = 0; k < 3; ++k) {
+        const double d = p.at(size_t(k)).get<double>();
+        if (!(std::fabs(d) <= double(std::numeric_limits<float>::max())))
+          throw MeshError(path + ": position " + std::to_string(m.positions.size()) + " is not finite: " + p.dump());
+        v[size_t(k)] = float(d);
+      }
+      m.positions.push_back(v);
+    }
     for (auto& c : cells) {
-      if (c.size() != 3) throw MeshError(path + ": a cell is not a triangle");
-      for (int k = 0; k < 3; ++k) m.indices.push_back(c.at(k).get<uint32_t>());
+      if (!c.is_array() || c.size() != 3) throw MeshError(path + ": a cell is not a triangle: " + c.dump());
+      for (int k = 0; k < 3; ++k) {
+        const nlohmann::json& i = c.at(size_t(k));
+        if (!i.is_number_unsigned() || i.get<uint64_t>() > 0xffffffffu)
+          throw MeshError(path + ": cell " + std::to_string(m.indices.size() / 3) + ": expected vertex indices, got " + c.dump());
+        m.indices.push_back(uint32_t(i.get<uint64_t>()));
+      }
     }
   } catch (const nlohmann::json::exception& ex) {
     throw MeshError(path + ": malformed positions/cells: " + ex.what());

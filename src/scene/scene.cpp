@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -98,9 +99,12 @@ struct Reader {
     const json& v = j.at(k);
     if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
       fail(key, "expected an array of 3 numbers, got " + v.dump());
-    Vec3 r{v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
-    for (float c : r)
-      if (!std::isfinite(c)) fail(key, "expected finite numbers");
+    Vec3 r{};
+    for (int c = 0; c < 3; ++c) {
+      const double d = v[size_t(c)].get<double>();  // checked before the conversion (a float cannot hold 1e39)
+      if (!(std::fabs(d) <= double(std::numeric_limits<float>::max()))) fail(key, "expected finite numbers, got " + v.dump());
+      r[size_t(c)] = float(d);
+    }
     return r;
   }
   std::string string(const json& j, const std::string& key, const std::string& def, bool required = false) const {
