@@ -11,7 +11,7 @@ cmake --build build -j"$(nproc)"
 (cd build && ctest --output-on-failure -j"$(nproc)")
 # The sanitizer build (issue 20): its own folder, only what its tests need (no benchmarks, no long verify suites).
 # Every report is fatal; leaks in the Vulkan drivers' own allocations are suppressed by name (tests/lsan.supp).
-cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ -DSHADETWIN_SANITIZE=ON
+cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHADETWIN_SANITIZE=ON
 cmake --build build-san -j"$(nproc)"
 # (No detect_stack_use_after_return: GCC 12's fake stack frames do not keep the 32-byte alignment of the SIMD lane
 # types, and an aligned AVX load of one faults: seen in philox4x32, x8 build.)
