@@ -19,9 +19,10 @@ target_link_libraries(fuzz_parsers PUBLIC PkgConfig::OIIO nlohmann_json::nlohman
 set(SHADETWIN_FUZZ_SECONDS 30 CACHE STRING "seconds each fuzz target runs in ctest")
 set(FUZZ_SEEDS ${CMAKE_BINARY_DIR}/fuzz_seeds)
 enable_testing()
-# Leaks inside libraries are suppressed by name (fuzz/lsan.supp); every report in the project's code is fatal.
+# Leaks inside libraries are suppressed by name (tests/lsan.supp, shared with the sanitizer build); every report in the
+# project's code is fatal.
 # (ASan's full unwinder on allocations: the fast one stops at libstdc++, before the library frames a suppression names.)
-set(FUZZ_ENV "ASAN_OPTIONS=fast_unwind_on_malloc=0:malloc_context_size=30" "LSAN_OPTIONS=suppressions=${CMAKE_SOURCE_DIR}/fuzz/lsan.supp:print_suppressions=0" "UBSAN_OPTIONS=print_stacktrace=1")
+set(FUZZ_ENV "ASAN_OPTIONS=fast_unwind_on_malloc=0:malloc_context_size=30" "LSAN_OPTIONS=suppressions=${CMAKE_SOURCE_DIR}/tests/lsan.supp:print_suppressions=0" "UBSAN_OPTIONS=print_stacktrace=1")
 add_test(NAME fuzz_seeds COMMAND bash ${CMAKE_SOURCE_DIR}/fuzz/make_seeds.sh ${CMAKE_SOURCE_DIR} ${FUZZ_SEEDS})
 set_tests_properties(fuzz_seeds PROPERTIES FIXTURES_SETUP fuzz_seeds LABELS fuzz)
 foreach(target scene mesh image device_desc)

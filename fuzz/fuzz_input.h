@@ -49,6 +49,17 @@ inline void rejected(const std::exception& e) {
   }
 }
 
+/// Runs one parse: what it throws is the expected answer to bad input (rejected() above); a crash, a sanitizer report or
+/// a hang is a bug.
+template <class Parse>
+void parseOrReject(Parse parse) {
+  try {
+    parse();
+  } catch (const std::exception& e) {
+    rejected(e);
+  }
+}
+
 /// Writes the input to <dir>/scenes/<name> and returns that path.
 inline std::string inputFile(const uint8_t* data, size_t size, const std::string& name) {
   const std::filesystem::path p = workDir() / "scenes" / name;

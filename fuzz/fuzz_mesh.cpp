@@ -1,6 +1,5 @@
 // libFuzzer target: the mesh loaders (scene/mesh.cpp): the first byte picks the format (npm package JSON, glTF or
 // binary glTF), the rest is the file. glTF external buffers resolve next to the file (nothing there: a clear error).
-#include <exception>
 
 #include "fuzz/fuzz_input.h"
 #include "scene/mesh.h"
@@ -10,11 +9,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const char* const names[3] = {"mesh.json", "mesh.gltf", "mesh.glb"};
   const int kind = data[0] % 3;
   const std::string path = shadetwin::fuzz::inputFile(data + 1, size - 1, names[kind]);
-  try {
-    shadetwin::Mesh m = kind == 0 ? shadetwin::loadNpmMesh(path) : shadetwin::loadGltf(path);
-    (void)m;
-  } catch (const std::exception& e) {
-    shadetwin::fuzz::rejected(e);
-  }
+  shadetwin::fuzz::parseOrReject([&] { kind == 0 ? shadetwin::loadNpmMesh(path) : shadetwin::loadGltf(path); });
   return 0;
 }

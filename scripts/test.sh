@@ -10,7 +10,7 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"
 (cd build && ctest --output-on-failure -j"$(nproc)")
 # The sanitizer build (issue 20): its own folder, only what its tests need (no benchmarks, no long verify suites).
-# Every report is fatal; leaks in the Vulkan drivers' own allocations are suppressed by name (tests/lsan.supp).
+# Every report is fatal; leaks inside libraries are suppressed by name (tests/lsan.supp).
 cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=Release -DSHADETWIN_SANITIZE=ON
 cmake --build build-san -j"$(nproc)"
 # (No detect_stack_use_after_return: GCC 12's fake stack frames do not keep the 32-byte alignment of the SIMD lane

@@ -66,7 +66,7 @@ int benchCommand(const BenchOptions& opts, std::ostream& log) {
     std::vector<double> te, tv;
     if (p == "shadow") spass = std::make_unique<ShadowPassVk>(ctx, scene, opts.shadowSize);
     if (p == "shade") {
-      if (!env) env = std::make_unique<EnvironmentMap>(loadEnvironment(scene.environment, quiet, scene.envClampNegative));
+      if (!env) env = std::make_unique<EnvironmentMap>(loadEnvironment(scene, quiet));
       inputs = shadeInputsEmu(scene, *env->texture, dev);
       shpass = std::make_unique<ShadePassVk>(ctx, scene, inputs);
     }

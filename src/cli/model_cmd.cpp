@@ -190,7 +190,7 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
     log << "model " << opts.scene << ": " << scene.width << "x" << scene.height << ", technique " << scene.technique << "; device "
         << desc.device << " (" << descPath << ", " << (desc.verified ? "measured" : "public figures, unverified") << ")\n";
     std::ostringstream quiet;
-    const EnvironmentMap env = loadEnvironment(scene.environment, quiet, scene.envClampNegative);
+    const EnvironmentMap env = loadEnvironment(scene, quiet);
     bool same = true;
     modelFrame(scene, opts.scene, env, desc, ctx.get(), dev, opts.repeat, log, same);
     return same ? 0 : 1;
@@ -226,7 +226,7 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
         for (const char* t : {"fis", "mirror", "env", "kdtree-mis"})
           if (base.technique != t) techniques.push_back(t);
       std::ostringstream quiet;
-      const EnvironmentMap env = loadEnvironment(base.environment, quiet, base.envClampNegative);
+      const EnvironmentMap env = loadEnvironment(base, quiet);
       for (const std::string& t : techniques) {
         Scene scene;
         try {
@@ -257,13 +257,11 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
   }
   if (!opts.csv.empty()) {
     OutputFile file(opts.csv);
-    {
-      std::ostream& f = file.stream();
-      f << "scene,technique,device,pass,bound,predicted_ms,measured_ms,error_pct\n";
-      for (const Row& r : all)
-        f << r.scene << "," << r.technique << "," << r.device << "," << r.pass << "," << r.bound << "," << r.predictedMs << ","
-          << r.measuredMs << "," << (r.measuredMs > 0 ? 100.0 * (r.predictedMs - r.measuredMs) / r.measuredMs : 0.0) << "\n";
-    }
+    std::ostream& f = file.stream();
+    f << "scene,technique,device,pass,bound,predicted_ms,measured_ms,error_pct\n";
+    for (const Row& r : all)
+      f << r.scene << "," << r.technique << "," << r.device << "," << r.pass << "," << r.bound << "," << r.predictedMs << ","
+        << r.measuredMs << "," << (r.measuredMs > 0 ? 100.0 * (r.predictedMs - r.measuredMs) / r.measuredMs : 0.0) << "\n";
     file.commit();
     log << "wrote " << opts.csv << "\n";
   }

@@ -99,7 +99,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + ".exr";
   checkWritable(out);  // a missing or unwritable output folder fails now, not after the render
   t0 = Clock::now();
-  const EnvironmentMap env0 = loadEnvironment(scene.environment, log, scene.envClampNegative);
+  const EnvironmentMap env0 = loadEnvironment(scene, log);
   const double tEnv = msSince(t0);
   log << std::fixed << std::setprecision(1);
   log << "  load scene + meshes      " << std::setw(8) << tScene << " ms\n";

@@ -147,7 +147,7 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   const std::vector<uint32_t> visMaps = parseCounts(opts.visMaps, "--vis-maps", "a map count", 0, 1024);
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(scene.environment, quiet, scene.envClampNegative);
+  EnvironmentMap env = loadEnvironment(scene, quiet);
   log << "sweep " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << scene.environment << "\n";
 
   // Reference: given, or rendered here (MIS, no visibility: the techniques have none).

@@ -46,7 +46,7 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   const std::vector<uint32_t> orders = parseCounts(opts.glintOrders, "--glint-orders", "a degree", 0, 64);
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(scene.environment, quiet, scene.envClampNegative);
+  EnvironmentMap env = loadEnvironment(scene, quiet);
   log << "sweep " << opts.scene << " (glints): " << scene.width << "x" << scene.height << ", " << scene.environment << "\n";
   SweepBuilds builds = sweepBuilds(opts, scene, log);
   const emu::DeviceProfile* dev = builds.dev;

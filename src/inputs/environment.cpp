@@ -31,7 +31,7 @@ EnvironmentMap environmentFromLevel0(std::vector<float> texels, uint32_t width, 
                                 std::to_string(texels.size()) + " values (expected a non-empty RGBA image)");
   EnvironmentMap env;
   const auto n = sanitizeTexels(texels, clampNegative);
-  env.nonFinite = n[0], env.negative = n[1], env.negativeClamped = clampNegative;
+  env.nonFinite = n[0], env.negative = n[1];
   auto levels = mipChainCpu(texels, width, height, 1, 8);
   env.texture = std::make_unique<emu::Texture>(packTexture(emu::Format::RGBA32F, width, height, 1, levels));
   env.levels = std::move(levels);
@@ -46,6 +46,10 @@ EnvironmentMap loadEnvironment(const std::string& path, std::ostream& log, bool 
   if (env.nonFinite) log << "  environment: " << path << ": " << env.nonFinite << " non-finite texel values replaced by 0\n";
   if (env.negative && clampNegative) log << "  environment: " << path << ": " << env.negative << " negative texel values clamped to 0\n";
   return env;
+}
+
+EnvironmentMap loadEnvironment(const Scene& scene, std::ostream& log) {
+  return loadEnvironment(scene.environment, log, scene.envClampNegative);
 }
 
 uint32_t environmentShift(uint32_t width, double degrees) {
@@ -68,7 +72,7 @@ EnvironmentMap rotateEnvironment(const EnvironmentMap& env, double degrees) {
   for (uint32_t y = 0; y < H; ++y)
     for (uint32_t x = 0; x < W; ++x)
       std::memcpy(&dst[4 * (size_t(y) * W + (x + W - s) % W)], &src[4 * (size_t(y) * W + x)], 16);
-  return environmentFromLevel0(std::move(dst), W, H, env.negativeClamped);
+  return environmentFromLevel0(std::move(dst), W, H);  // the texels moved already follow the source's policy
 }
 
 }  // namespace shadetwin

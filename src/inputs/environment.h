@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "emu/texture.h"
+#include "scene/scene.h"
 
 namespace shadetwin {
 
@@ -18,7 +19,6 @@ struct EnvironmentMap {
   std::vector<std::vector<float>> levels;
   std::unique_ptr<emu::Texture> texture;
   size_t nonFinite = 0, negative = 0;  // texel values replaced by 0 / below 0 in the source (kept unless clamped)
-  bool negativeClamped = false;
 };
 /// The policy for a source HDRI's texel values (docs/DESIGN.md, docs/RESULTS.md "Bad input"): NaN and infinities become 0
 /// and are counted; negative values are counted and kept (real data in the CC0 maps, and hard cases of the exactness
@@ -27,6 +27,8 @@ struct EnvironmentMap {
 std::array<size_t, 2> sanitizeTexels(std::vector<float>& texels, bool clampNegative);
 /// Loads the HDRI with that policy (the counts logged when anything was replaced) and builds its MIP chain.
 EnvironmentMap loadEnvironment(const std::string& path, std::ostream& log, bool clampNegative = false);
+/// The scene's environment under the scene's policy (its "negative" key).
+EnvironmentMap loadEnvironment(const Scene& scene, std::ostream& log);
 /// The same from level-0 texels (RGBA, rows top to bottom); throws std::invalid_argument for an empty image.
 EnvironmentMap environmentFromLevel0(std::vector<float> texels, uint32_t width, uint32_t height, bool clampNegative = false);
 /// Whole columns an equirectangular map of `width` shifts for a turn of `degrees` about +y (rounded).

@@ -104,7 +104,7 @@ int verifyShadow(const VerifyOptions& opts, std::ostream& out) {
 int verifyShade(const VerifyOptions& opts, std::ostream& out) {
   Setup s = setUp(opts, out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet, s.scene.envClampNegative);
+  EnvironmentMap env = loadEnvironment(s.scene, quiet);
   GBuffer g = gbufferVulkan(*s.ctx, s.scene);  // one G-buffer for both shading passes
   // The technique's inputs, the same for both passes (fis: the emulator's atlas and SH irradiance).
   const ShadeInputs in = shadeInputsEmu(s.scene, *env.texture, *s.dev);
@@ -123,7 +123,7 @@ int verifyShade(const VerifyOptions& opts, std::ostream& out) {
 int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
   Setup s = setUp(opts, out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet, s.scene.envClampNegative);
+  EnvironmentMap env = loadEnvironment(s.scene, quiet);
   // Each build makes its own technique inputs (fis: atlas + MIP chain, SH irradiance).
   const ShadeInputs inE = shadeInputsEmu(s.scene, *env.texture, *s.dev);
   const ShadeInputs inV = shadeInputsVulkan(*s.ctx, s.scene, *env.texture);
@@ -146,7 +146,7 @@ int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
 int verifyParaboloid(const VerifyOptions& opts, std::ostream& out) {
   Setup s = setUp(opts, out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet, s.scene.envClampNegative);
+  EnvironmentMap env = loadEnvironment(s.scene, quiet);
   const uint32_t S = opts.faceSize;
   std::vector<float> e = paraboloidAtlasEmu(*env.texture, *s.dev, S);
   std::vector<float> v = paraboloidAtlasVulkan(*s.ctx, *env.texture, S);
@@ -165,7 +165,7 @@ int verifyParaboloid(const VerifyOptions& opts, std::ostream& out) {
 int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out) {
   Setup s = setUp(opts, out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet, s.scene.envClampNegative);
+  EnvironmentMap env = loadEnvironment(s.scene, quiet);
   const ShIrradiance e = shIrradianceEmu(*env.texture, *s.dev), v = shIrradianceVulkan(*s.ctx, *env.texture);
   out << "environment " << s.scene.environment << " (" << env.width << "x" << env.height
       << ") -> 9 x RGB coefficients of E/pi, 7 x RGB of band-3 radiance\n";
@@ -180,7 +180,7 @@ int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out) {
 int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
   Setup s = setUp(opts, out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet, s.scene.envClampNegative);
+  EnvironmentMap env = loadEnvironment(s.scene, quiet);
   VisibilitySettings vs;
   vs.maps = opts.directions;
   vs.size = opts.shadowSize;
@@ -219,7 +219,7 @@ int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
 int verifyGlintLighting(const VerifyOptions& opts, std::ostream& out) {
   Setup s = setUp(opts, out);
   std::ostringstream quiet;
-  EnvironmentMap env = loadEnvironment(s.scene.environment, quiet, s.scene.envClampNegative);
+  EnvironmentMap env = loadEnvironment(s.scene, quiet);
   GlintLightingSpec spec;
   spec.order = opts.glintOrder, spec.rings = opts.glintRings, spec.sectors = opts.glintSectors;
   if (opts.glintLevel >= 0) spec.level = uint32_t(opts.glintLevel);
