@@ -31,3 +31,19 @@ TEST(VkContext, VerifyRunsCleanUnderValidation) {
   EXPECT_EQ(0, shadetwin::verifyTexture(o, tex)) << tex.str();
   EXPECT_NE(tex.str().find("validation errors: 0"), std::string::npos) << tex.str();
 }
+
+// The zero counts above can fail: the same messenger counts a real misuse (a buffer created with no usage bits,
+// VUID-VkBufferCreateInfo-usage-requiredbitmask) and names it.
+TEST(VkContext, ValidationCountsAMisuse) {
+  shadetwin::vk::Context ctx({"", true});
+  ASSERT_TRUE(ctx.validationEnabled()) << "VK_LAYER_KHRONOS_validation missing (scripts/setup.sh installs it)";
+  EXPECT_EQ(ctx.validationErrors(), 0u);
+  VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bi.size = 256;
+  bi.usage = 0;  // invalid: at least one usage bit is required
+  bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VkBuffer buf = VK_NULL_HANDLE;
+  if (vkCreateBuffer(ctx.device(), &bi, nullptr, &buf) == VK_SUCCESS) vkDestroyBuffer(ctx.device(), buf, nullptr);
+  EXPECT_GE(ctx.validationErrors(), 1u);
+  EXPECT_NE(ctx.lastValidationMessage.find("usage"), std::string::npos) << ctx.lastValidationMessage;
+}

@@ -1,7 +1,10 @@
 // shadetwin command line.
 #include <CLI/CLI.hpp>
 
+#include <tbb/global_control.h>
+
 #include <exception>
+#include <memory>
 #include <string>
 #include <iostream>
 
@@ -21,6 +24,9 @@ int main(int argc, char** argv) {
   shadetwin::installInterruptCleanup();  // SIGINT / SIGTERM remove every output's temporary (util/output_file.h)
   CLI::App app{"shadetwin: a bit-exact CPU twin of a Vulkan image-based-lighting renderer"};
   app.require_subcommand(1);
+  unsigned threads = 0;
+  app.add_option("--threads", threads, "worker threads of the emulator and the host passes, before the command (shadetwin --threads 1 "
+                 "render ...; default: every core); outputs do not depend on it")->check(CLI::Range(1, 4096));
   shadetwin::VerifyOptions vo;
   auto* verify = app.add_subcommand("verify", "differential tests: emulator and C++ builds against a Vulkan device");
   verify->require_subcommand(1);
@@ -187,6 +193,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  std::unique_ptr<tbb::global_control> threadLimit;
+  if (threads) threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
   try {
     if (app.got_subcommand("devices")) {
       for (auto& n : shadetwin::vk::Context::listDevices()) std::cout << n << "\n";

@@ -17,6 +17,8 @@
 #include "emu/format.h"
 #include "util/output_file.h"
 #include "util/image_io.h"
+#include "util/memory.h"
+#include "passes/frame_memory.h"
 #include "passes/mips.h"
 #include "passes/shade.h"
 #include "passes/passes_vk.h"
@@ -82,7 +84,8 @@ std::string frameOut(const std::string& out, uint32_t frames, uint32_t f) {
 }  // namespace
 
 int renderCommand(const RenderOptions& opts, std::ostream& log) {
-  auto t0 = Clock::now();
+  const auto tStart = Clock::now();
+  auto t0 = tStart;
   Scene scene = loadScene(opts.scene);
   if (opts.width) scene.width = opts.width;
   if (opts.height) scene.height = opts.height;
@@ -98,6 +101,20 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   std::string out = opts.out;
   if (out.empty()) out = std::filesystem::path(opts.scene).stem().string() + ".exr";
   checkWritable(out);  // a missing or unwritable output folder fails now, not after the render
+  // A frame that would need more memory than the machine has fails now, with what it would need, not in an allocation.
+  {
+    const ImageHeader eh = imageHeader(scene.environment);
+    std::vector<MemoryNeed> needs =
+        frameMemory(scene, eh.width, eh.height, eh.channels, opts.device == "vulkan" ? FrameBuild::Vulkan : FrameBuild::Emu);
+    if (opts.frames > 1 && opts.envRotate != 0)
+      needs.push_back({"turned environment", double(eh.width) * eh.height * 16.0 * 4.0 / 3.0 * 2});
+    const MemoryBudget budget = memoryBudget();
+    checkMemoryBudget(opts.scene, needs, budget);
+    double total = 0;
+    for (const MemoryNeed& n : needs) total += n.bytes;
+    log << "  memory: about " << formatBytes(total) << " estimated for a frame, beside " << formatBytes(residentBytes())
+        << " held (scene and meshes); " << formatBytes(budget.bytes) << " may be used\n";
+  }
   t0 = Clock::now();
   const EnvironmentMap env0 = loadEnvironment(scene, log);
   const double tEnv = msSince(t0);
@@ -246,6 +263,8 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
   }
   if (opts.frames > 1)
     log << opts.frames << " frames, technique inputs built " << cache.builds() << " time(s)\n";
+  log << "peak memory " << formatBytes(peakResidentBytes()) << " resident (" << std::setprecision(1) << msSince(tStart) / 1000.0
+      << " s in all)\n";
   return 0;
 }
 

@@ -19,6 +19,7 @@
 
 #include "util/image_io.h"
 #include "util/output_file.h"
+#include "util/memory.h"
 #include "inputs/environment.h"
 #include "reference/reference_brdf.h"
 #include "reference/ref_environment.h"
@@ -326,6 +327,15 @@ int referenceCommand(const ReferenceCommandOptions& opts, std::ostream& log) {
   if (opts.height) scene.height = opts.height;
   const std::string out = opts.out.empty() ? std::filesystem::path(opts.scene).stem().string() + "_ref.exr" : opts.out;
   checkWritable(out);  // before the render: a missing output folder costs nothing
+  {
+    // What the reference holds beside the scene: the image (and its EXR/PNG copies), the environment (its file's
+    // channels and RGBA32F while loading, its sampling tables), Embree's BVH over the triangles.
+    const ImageHeader eh = imageHeader(scene.environment);
+    const double px = double(scene.width) * scene.height, texels = double(eh.width) * eh.height;
+    checkMemoryBudget(opts.scene, {{"image", px * 36.0},
+                                   {"environment", texels * (4.0 * eh.channels + 16.0 + 16.0)},
+                                   {"BVH", double(scene.triangles()) * 128.0}});
+  }
   ImageRGBA img = loadImageRGBA(scene.environment);
   const auto [nonFinite, negative] = sanitizeTexels(img.texels, scene.envClampNegative);  // the renderer's policy
   log << "reference " << opts.scene << ": " << scene.width << "x" << scene.height << ", " << opts.render.spp

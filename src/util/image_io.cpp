@@ -6,10 +6,13 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 namespace shadetwin {
 
-ImageRGBA loadImageRGBA(const std::string& path) {
+namespace {
+// The file opened for reading, its header checked (present, readable, not empty).
+std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
   namespace fs = std::filesystem;
   if (!fs::exists(path)) {
     std::string hint = path.find("assets/") != std::string::npos ? " (run scripts/setup.sh to fetch the assets)" : "";
@@ -21,6 +24,18 @@ ImageRGBA loadImageRGBA(const std::string& path) {
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
     throw FileError(path + ": image has zero size (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) + ", " +
                     std::to_string(spec.nchannels) + " channels)");
+  return in;
+}
+}  // namespace
+
+ImageHeader imageHeader(const std::string& path) {
+  const auto in = openImage(path);
+  return {uint32_t(in->spec().width), uint32_t(in->spec().height), uint32_t(in->spec().nchannels)};
+}
+
+ImageRGBA loadImageRGBA(const std::string& path) {
+  auto in = openImage(path);
+  const OIIO::ImageSpec& spec = in->spec();
   // Decoded as float RGBA (and the file's channels once more while decoding): refuse what this machine cannot hold
   // before allocating it, with the memory it would need.
   const double need = double(spec.width) * spec.height * (16.0 + 4.0 * spec.nchannels);
@@ -71,6 +86,9 @@ void writeImage(const std::string& path, uint32_t width, uint32_t height, int ch
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw FileError(path + ": cannot write: no image writer for this file extension");
   OIIO::ImageSpec spec(int(width), int(height), channels, type);
+  // OpenImageIO stamps an EXR with the time it was written (capDate) unless DateTime is given: an empty one keeps two
+  // runs' files byte-identical (tests/output_determinism_test.sh), as a CI twin's outputs should be.
+  if (type == OIIO::TypeDesc::FLOAT) spec.attribute("DateTime", "");
   if (!out->open(file.tempPath(), spec) || !out->write_image(type, data) || !out->close())
     throw FileError(path + ": cannot write: " + out->geterror());
   file.commit();

@@ -18,6 +18,13 @@ struct FileError : std::runtime_error {
 
 /// The most a loaded image may take (decoded RGBA32F plus the file's channels): 8 GiB, a third of this machine's memory.
 inline constexpr double kMaxImageBytes = 8.0 * 1024 * 1024 * 1024;
+struct ImageHeader {
+  uint32_t width = 0, height = 0, channels = 0;
+};
+/// The size of an image file from its header, without decoding it; the same FileErrors as loadImageRGBA for a missing,
+/// unreadable or empty file.
+ImageHeader imageHeader(const std::string& path);
+
 /// Loads any OpenImageIO-readable file as float RGBA: channels R, G, B (A, else alpha 1) by name, or one gray channel
 /// (or Y) replicated. Throws FileError naming the path and the problem (missing file, unreadable format, zero size,
 /// other channel sets, more than kMaxImageBytes); for a file under assets/ the message says how to fetch it.

@@ -1,0 +1,51 @@
+#include "passes/frame_memory.h"
+
+#include <set>
+#include <string>
+#include <tuple>
+
+#include "passes/gbuffer.h"
+
+namespace shadetwin {
+
+std::vector<MemoryNeed> frameMemory(const Scene& s, uint32_t envWidth, uint32_t envHeight, uint32_t envChannels, FrameBuild build) {
+  const bool vk = build == FrameBuild::Vulkan;
+  const double px = double(s.width) * s.height, texels = double(envWidth) * envHeight;
+  const double mip = 4.0 / 3.0;  // a full MIP chain over level 0
+  std::vector<MemoryNeed> n;
+  // G-buffer: four RGBA32F targets and the depth; on a device also its images and the read-back buffer.
+  n.push_back({"G-buffer", px * (kGbufFloats + 1) * 4.0 * (vk ? 3 : 1)});
+  // The shaded image, the EXR writer's copy and the PNG's 8-bit pixels; a device's storage image and read-back.
+  n.push_back({"image", px * (16.0 + 16.0 + 4.0 + (vk ? 32.0 : 0.0))});
+  if (usesMisPass(s.technique)) n.push_back({"progressive mean", px * 32.0});
+  // The environment: the file's channels and the RGBA32F level 0 while loading, then the MIP chain as levels and as the
+  // emulator's texture; a device's image and its staging copy.
+  n.push_back({"environment", texels * (4.0 * envChannels + 16.0 + 2 * 16.0 * mip + (vk ? 2 * 16.0 * mip : 0.0))});
+  if (usesMisPass(s.technique)) n.push_back({"sampler tables", texels * 16.0});
+  if (usesFisPass(s.technique)) n.push_back({"paraboloid atlas", 2.0 * s.fisFaceSize * s.fisFaceSize * 16.0 * mip * (vk ? 3 : 1)});
+  if (s.visMaps && (usesFisPass(s.technique) || usesMisPass(s.technique))) {
+    // K maps of size^2 D32F, their copy as the fit's array (a device: the images and their read-back), then 16
+    // coefficients per pixel and as many filtered.
+    const double maps = double(s.visMaps) * s.visSize * s.visSize * 4.0;
+    n.push_back({"shadow maps", maps * (vk ? 3 : 2)});
+    n.push_back({"visibility coefficients", px * 16 * 4.0 * (s.visFilterRadius ? 2 : 1) * (vk ? 2 : 1)});
+  }
+  if (s.technique == "glints") {
+    // Per distinct normal map (glintInputs: one per map, size, seed and spread): the map (3 floats a texel), its NDF
+    // histogram SAT (rings x sectors 16-bit counts a texel), the SAT as a texture and the one array holding every map.
+    std::set<std::tuple<std::string, uint32_t, uint32_t, float>> maps;
+    double mapBytes = 0;
+    for (const Material& m : s.materials)
+      if (m.glints && maps.emplace(m.glintMap, m.glintMapSize, m.glintMapSeed, m.glintSpread).second) {
+        const double t = double(m.glintMapSize) * m.glintMapSize;
+        mapBytes += t * (12.0 + 3.0 * s.glintRings * s.glintSectors * 2.0);
+      }
+    n.push_back({"glint tables", mapBytes * (vk ? 4.0 / 3.0 : 1.0)});
+    const double coeffs = double(s.glintOrder + 1) * (s.glintOrder + 1);
+    n.push_back({"glint lighting table", double(s.glintViewRings) * s.glintViewSectors * coeffs * 16.0 * 2});
+    if (s.glintLobeRings) n.push_back({"glint lobe table", double(s.glintLobeRings) * s.glintLobeSectors * coeffs / 4.0 * 16.0});
+  }
+  return n;
+}
+
+}  // namespace shadetwin
