@@ -13,8 +13,13 @@ std::vector<MemoryNeed> frameMemory(const Scene& s, uint32_t envWidth, uint32_t 
   const double px = double(s.width) * s.height, texels = double(envWidth) * envHeight;
   const double mip = 4.0 / 3.0;  // a full MIP chain over level 0
   std::vector<MemoryNeed> n;
-  // G-buffer: four RGBA32F targets and the depth; on a device also its images and the read-back buffer.
-  n.push_back({"G-buffer", px * (kGbufFloats + 1) * 4.0 * (vk ? 3 : 1)});
+  // G-buffer: four RGBA32F targets and the depth, drawn into the emulator's targets and copied out (on a device: its
+  // images, the read-back buffer, the copy and the shading pass's upload of it).
+  n.push_back({"G-buffer", px * (kGbufFloats + 1) * 4.0 * (vk ? 4 : 2)});
+  // Geometry beyond the loaded meshes: transformed vertices and set-up triangles of the G-buffer and shadow passes.
+  // Measured, not derived: the stress run's 2,000,000-triangle mesh peaked 1.06 GiB above the other parts (docs/RESULTS.md
+  // "Stress"), ~570 bytes per triangle.
+  n.push_back({"geometry", double(s.triangles()) * 576.0});
   // The shaded image, the EXR writer's copy and the PNG's 8-bit pixels; a device's storage image and read-back.
   n.push_back({"image", px * (16.0 + 16.0 + 4.0 + (vk ? 32.0 : 0.0))});
   if (usesMisPass(s.technique)) n.push_back({"progressive mean", px * 32.0});

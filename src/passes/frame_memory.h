@@ -16,9 +16,9 @@ enum class FrameBuild { Emu, Vulkan };
 
 /// The largest allocations of one frame of `scene` (its technique, image size, visibility block, glint tables) over an
 /// environment of envWidth x envHeight with envChannels channels in its file, and the per-frame accumulation of a
-/// progressive technique. Meshes are not included (they are loaded with the scene, so the process already holds them),
-/// nor material maps (their size is known when loaded) or allocations under 1 MiB. Byte counts per part, not a bound:
-/// the emulated frames of docs/RESULTS.md "Stress" peak within the estimate plus what the process held before.
+/// progressive technique, and the passes' transformed geometry (per triangle, measured). The loaded meshes are not
+/// included (they come with the scene, so the process already holds them), nor material maps (their size is known when
+/// loaded). Byte counts per part, not a bound: docs/RESULTS.md "Stress" compares them with measured peaks.
 std::vector<MemoryNeed> frameMemory(const Scene& scene, uint32_t envWidth, uint32_t envHeight, uint32_t envChannels,
                                     FrameBuild build);
 
