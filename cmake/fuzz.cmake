@@ -16,7 +16,7 @@ add_library(fuzz_parsers STATIC src/scene/scene.cpp src/scene/mesh.cpp src/scene
 target_include_directories(fuzz_parsers PUBLIC ${CMAKE_SOURCE_DIR} ${CMAKE_SOURCE_DIR}/src)
 target_compile_options(fuzz_parsers PRIVATE ${FUZZ_FLAGS} -fsanitize=fuzzer-no-link)
 target_link_libraries(fuzz_parsers PUBLIC PkgConfig::OIIO nlohmann_json::nlohmann_json)
-set(SHADETWIN_FUZZ_SECONDS 30 CACHE STRING "seconds each fuzz target runs in ctest")
+set(SHADETWIN_FUZZ_SECONDS 20 CACHE STRING "seconds each fuzz target runs in ctest")
 set(FUZZ_SEEDS ${CMAKE_BINARY_DIR}/fuzz_seeds)
 enable_testing()
 # Leaks inside libraries are suppressed by name (tests/lsan.supp, shared with the sanitizer build); every report in the

@@ -13,14 +13,14 @@ values() {
            { line = ""; for (i = 1; i <= NF; i++) if (keep[i]) line = line (line == "" ? "" : ",") $i; print line }' "$1"
 }
 for t in 1 2 16; do
-  "$bin" --threads "$t" sweep --scene "$scene" --samples 4,16 --reference-spp 8 --width 64 --height 24 \
+  "$bin" --threads "$t" sweep --scene "$scene" --samples 4 --reference-spp 8 --width 64 --height 24 \
     --out "$out/sweep_$t" > "$out/sweep_$t.log" 2>&1 || fail "sweep --threads $t: $(tail -3 "$out/sweep_$t.log")"
   "$bin" --threads "$t" render "$scene" --technique kdtree-mis --width 64 --height 24 --out "$out/render_$t.exr" \
     > "$out/render_$t.log" 2>&1 || fail "render --threads $t: $(tail -3 "$out/render_$t.log")"
   values "$out/sweep_$t/sweep.csv" > "$out/values_$t.csv"
 done
 rows=$(($(wc -l < "$out/values_1.csv") - 1))
-[ "$rows" -ge 4 ] || fail "sweep.csv has $rows rows"
+[ "$rows" -ge 2 ] || fail "sweep.csv has $rows rows"
 for t in 2 16; do
   cmp -s "$out/values_1.csv" "$out/values_$t.csv" || fail "sweep.csv values differ between --threads 1 and $t: $(diff "$out/values_1.csv" "$out/values_$t.csv" | head -4)"
   cmp -s "$out/render_1.exr" "$out/render_$t.exr" || fail "render EXR differs between --threads 1 and $t"

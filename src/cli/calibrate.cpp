@@ -208,17 +208,18 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     int inseparable = 0;  // rates read from one run (printed at the end of the round)
     auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod, uint32_t dependent = 0) {
       Push p{kind, 16, 0, dependent, c, lod, 0.0173f, 0.0f};
-      double t = 0.0;  // the run at N: in the first round the last run of the search for N
+      double t = 0.0, tq = 0.0;  // the runs at N and 2N: in the first round the last pair of the search for N
       if (rateAt == rateIters.size()) {
-        // N grows until a run takes half of `target` and N iterations' work is at least the run's fixed part (the 2N
-        // run at least 1.5x the N run): SwiftShader's workgroup set-up in this module is ~10 ms of a 16,384-invocation
+        // N grows until a run takes half of `target` and N iterations' work is at least half the run's fixed part
+        // (the 2N run at least 1.33x the N run): SwiftShader's workgroup set-up in this module is ~10 ms of a 16,384-invocation
         // run, so a run at half of a --quick target was mostly set-up and its 2N run only 5% longer.
         for (;;) {
           t = timeRun(p, s, count);
           Push q2 = p;
           q2.iters = 2 * p.iters;
-          const double w = timeRun(q2, s, count) - t;  // N iterations' work (noisy while small)
-          if ((t >= 0.5 * target && w >= 0.5 * t) || p.iters >= (1u << 23)) break;
+          tq = timeRun(q2, s, count);
+          const double w = tq - t;  // N iterations' work (noisy while small)
+          if ((t >= 0.5 * target && w >= 0.33 * t) || p.iters >= (1u << 23)) break;
           const double byTime = 0.6 * target / std::max(t, 1e-6), byWork = t / std::max(w, t / 16.0);
           p.iters = uint32_t(std::min<double>(double(1u << 23), double(p.iters) * std::clamp(std::max(byTime, byWork), 2.0, 64.0)));
         }
@@ -226,6 +227,9 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       } else {
         p.iters = rateIters[rateAt];
         t = timeRun(p, s, count);
+        Push q2 = p;
+        q2.iters = 2 * p.iters;
+        tq = timeRun(q2, s, count);
       }
       ++rateAt;
       Push q = p;
@@ -236,7 +240,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       // calibration (session 26) differenced its fmul to 2.8 Tops/s and its conversions to 21 Tops/s, 90x and 960x
       // every other reading, from a t2 barely above t1. Still outside after the retries (or after the best of the
       // rounds is taken), the rate is the 2N run's alone: it includes the fixed part, so it errs low, never absurdly.
-      double t1 = t, t2 = timeRun(q, s, count);
+      double t1 = t, t2 = tq;
       const auto separable = [](double a, double b) { return b > 1.15 * a && b < 2.3 * a; };
       for (int retry = 0; retry < 6 && !separable(t1, t2); ++retry) {
         t1 = std::min(t1, timeRun(p, s, count));

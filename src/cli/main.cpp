@@ -148,6 +148,7 @@ int main(int argc, char** argv) {
   modelCmd->add_flag("--calibrate", mo.calibrate, "--validate: calibrate each device (devices/<D>.json) just before measuring it");
   modelCmd->add_option("--calibrate-rounds", mo.calibrateRounds, "--calibrate: calibrate's --rounds (default 3)")
       ->check(CLI::Range(1, 20));
+  modelCmd->add_flag("--calibrate-quick", mo.calibrateQuick, "--calibrate: calibrate's --quick (short runs; tests the path, not for shipped files)");
   auto* bench = app.add_subcommand("bench", "time passes on the emulator and on a Vulkan device in one run; last line: ratio emu/vulkan");
   bench->add_option("--scene", bo.scene, "scene file");
   bench->add_option("--passes", bo.passes, "comma-separated passes: gbuffer, shadow, shade");

@@ -212,6 +212,7 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
       CalibrateOptions co;
       co.device = d;
       co.rounds = opts.calibrateRounds;
+      co.quick = opts.calibrateQuick;
       std::filesystem::create_directories(opts.devicesDir);
       model::saveDeviceDesc(calibrateDevice(co, log), opts.devicesDir + "/" + d + ".json");
       log << "wrote " << opts.devicesDir << "/" << d << ".json\n";

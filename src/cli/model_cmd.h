@@ -28,6 +28,7 @@ struct ModelOptions {
   // the prediction and the measurement see the same state of a shared host (its speed drifts 15-35% over minutes).
   bool calibrate = false;
   int calibrateRounds = 0;  // calibrate's rounds (0: its default)
+  bool calibrateQuick = false;  // calibrate's --quick (short runs: for tests of the path, not for shipped files)
 };
 
 int modelCommand(const ModelOptions& opts, std::ostream& log);
