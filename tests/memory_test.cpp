@@ -29,11 +29,7 @@ double need(const std::vector<MemoryNeed>& n, const std::string& what) {
   return -1;
 }
 
-double sum(const std::vector<MemoryNeed>& n) {
-  double s = 0;
-  for (const MemoryNeed& m : n) s += m.bytes;
-  return s;
-}
+double sum(const std::vector<MemoryNeed>& n) { return totalBytes(n); }
 
 // A scene file in a folder of its own whose ../assets is the checkout's (the shipped scenes' relative paths work).
 struct SceneDir {

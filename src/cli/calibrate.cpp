@@ -227,13 +227,11 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       } else {
         p.iters = rateIters[rateAt];
         t = timeRun(p, s, count);
-        Push q2 = p;
-        q2.iters = 2 * p.iters;
-        tq = timeRun(q2, s, count);
       }
       ++rateAt;
       Push q = p;
       q.iters = 2 * p.iters;
+      if (tq == 0.0) tq = timeRun(q, s, count);  // a later round: the 2N run right after the N run
       // The difference is N iterations' work only if neither run fell into a slow spell: the 2N run takes 1.15-2.3
       // times the N run (2x the work plus the same fixed part, which may be up to ~6x the work in SwiftShader's
       // workgroup-heavy runs). Outside that, both are re-run (the fastest of each kept): one single-round SwiftShader

@@ -110,9 +110,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
       needs.push_back({"turned environment", double(eh.width) * eh.height * 16.0 * 4.0 / 3.0 * 2});
     const MemoryBudget budget = memoryBudget();
     checkMemoryBudget(opts.scene, needs, budget);
-    double total = 0;
-    for (const MemoryNeed& n : needs) total += n.bytes;
-    log << "  memory: about " << formatBytes(total) << " estimated for a frame, beside " << formatBytes(residentBytes())
+    log << "  memory: about " << formatBytes(totalBytes(needs)) << " estimated for a frame, beside " << formatBytes(residentBytes())
         << " held (scene and meshes); " << formatBytes(budget.bytes) << " may be used\n";
   }
   t0 = Clock::now();

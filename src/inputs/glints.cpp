@@ -48,12 +48,12 @@ GlintInputs common(const Scene& scene, const emu::Texture& env) {
   in.bins = NdfBinningSpec{scene.glintRings, scene.glintSectors, scene.glintThetaMax};
   const auto t0 = std::chrono::steady_clock::now();
   // Distinct maps in order of first use; every material's rings -> layers of the one array.
-  std::map<std::tuple<std::string, uint32_t, uint32_t, float>, uint32_t> index;
+  std::map<GlintMapKey, uint32_t> index;
   std::vector<NdfSat> sats;
   std::vector<uint32_t> mapOfMaterial(scene.materials.size());
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const Material& m = scene.materials[i];
-    const auto key = std::make_tuple(m.glintMap, m.glintMapSize, m.glintMapSeed, m.glintSpread);
+    const GlintMapKey key = glintMapKey(m);
     auto it = index.find(key);
     if (it == index.end()) {
       NormalMap nm;

@@ -5,6 +5,8 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "emu/device_profile.h"
@@ -50,6 +52,9 @@ uint64_t glintShadeLoopBound(uint32_t order, uint32_t rings, uint32_t sectors, b
 
 /// A glint material's normal map (generated from its spec or loaded from its file).
 NormalMap glintMaterialMap(const Material& m);
+/// What makes two materials' normal maps the same map (one SAT in the inputs' array): kind or file, size, seed, spread.
+using GlintMapKey = std::tuple<std::string, uint32_t, uint32_t, float>;
+inline GlintMapKey glintMapKey(const Material& m) { return {m.glintMap, m.glintMapSize, m.glintMapSeed, m.glintSpread}; }
 
 /// Throws std::invalid_argument naming the material when its map cannot be generated or loaded, or
 /// when the scene's maps differ in size (one texture array holds them all).

@@ -1,9 +1,8 @@
 #include "passes/frame_memory.h"
 
 #include <set>
-#include <string>
-#include <tuple>
 
+#include "inputs/glints.h"
 #include "passes/gbuffer.h"
 
 namespace shadetwin {
@@ -38,10 +37,10 @@ std::vector<MemoryNeed> frameMemory(const Scene& s, uint32_t envWidth, uint32_t 
   if (s.technique == "glints") {
     // Per distinct normal map (glintInputs: one per map, size, seed and spread): the map (3 floats a texel), its NDF
     // histogram SAT (rings x sectors 16-bit counts a texel), the SAT as a texture and the one array holding every map.
-    std::set<std::tuple<std::string, uint32_t, uint32_t, float>> maps;
+    std::set<GlintMapKey> maps;
     double mapBytes = 0;
     for (const Material& m : s.materials)
-      if (m.glints && maps.emplace(m.glintMap, m.glintMapSize, m.glintMapSeed, m.glintSpread).second) {
+      if (m.glints && maps.insert(glintMapKey(m)).second) {
         const double t = double(m.glintMapSize) * m.glintMapSize;
         mapBytes += t * (12.0 + 3.0 * s.glintRings * s.glintSectors * 2.0);
       }

@@ -97,9 +97,14 @@ std::string formatBytes(double bytes) {
   return buf;
 }
 
-void checkMemoryBudget(const std::string& file, const std::vector<MemoryNeed>& needs, const MemoryBudget& budget) {
+double totalBytes(const std::vector<MemoryNeed>& needs) {
   double total = 0;
   for (const MemoryNeed& n : needs) total += n.bytes;
+  return total;
+}
+
+void checkMemoryBudget(const std::string& file, const std::vector<MemoryNeed>& needs, const MemoryBudget& budget) {
+  const double total = totalBytes(needs);
   const double held = residentBytes();
   if (total + held <= budget.bytes) return;
   std::vector<MemoryNeed> parts = needs;

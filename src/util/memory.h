@@ -28,6 +28,9 @@ double peakResidentBytes();
 /// The process's resident set now (VmRSS), bytes; 0 when unknown.
 double residentBytes();
 
+/// The needs' sum, bytes.
+double totalBytes(const std::vector<MemoryNeed>& needs);
+
 /// "1.23 GiB", "456.7 MiB", "12.0 KiB".
 std::string formatBytes(double bytes);
 /// Parses "123", "64K", "512M", "24G" (powers of 1024; an optional trailing B or iB); throws std::invalid_argument.
