@@ -67,6 +67,7 @@ void countFisPass(const Setup& s) {
   const GBuffer& g = s.g;
   const emu::DeviceProfile& dev = emu::lavapipeProfile();
   const shade::Sampler2D atlas = environmentSampler(*s.in.atlas, dev, false);
+  const shade::Sampler2D env = environmentSampler(*s.env.texture, dev, true);
   const shade::Sampler2D maps = materialMapSampler(*s.in.maps, dev);
   const std::vector<MaterialGpu> mats = materialRecords(scene, true);
   const CameraRays cam = cameraRays(scene);
@@ -98,7 +99,7 @@ void countFisPass(const Setup& s) {
                             cs::brdfParamsPacked(kind, rec[2], rec[3], rec[4], rec[5]), mp[0], mp[1], mp[2], g1, g2, g3);
     const CV4 zero(CF(0.0f), CF(0.0f), CF(0.0f), CF(0.0f));
     const cs::Sh16 noVis{zero, zero, zero, zero};  // the roofline counts the pass without visibility
-    const CV4 out = cs::shadeFis(atlas, shade::scalar::kFisFiltered, maxLod, levelC, bias, scene.fisSamples, intensity, sh,
+    const CV4 out = cs::shadeFis(atlas, env, shade::scalar::kFisBackgroundEnvironment, shade::scalar::kFisFiltered, maxLod, levelC, bias, scene.fisSamples, intensity, sh,
                                  pixel, g0, g1, g2, splat(cam.eye), ray, m.diffuse, m.specular, m.brdf,
                                  shade::scalar::kFisVisNone, noVis, cs::VisLighting{noVis, noVis, noVis});
     benchmark::DoNotOptimize(out);

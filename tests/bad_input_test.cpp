@@ -250,6 +250,37 @@ TEST(BadInput, UnknownKeysAndWrongTypesNameTheKey) {
   EXPECT_MENTIONS(err("t3.json", R"({"camera": {"eye": [0, 0], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/studio.exr"}})"),
                   "camera.eye");
   EXPECT_MENTIONS(err("t4.json", "{" + kOkScene + R"(, "fis": 40})"), "fis: expected an object");
+  EXPECT_MENTIONS(err("t5.json", "{" + kOkScene + R"(, "fis": {"background": "sky"}})"),
+                  "fis.background: unknown background 'sky' (expected: environment or atlas)");
+  EXPECT_MENTIONS(err("t6.json", "{" + kOkScene + R"(, "fis": {"background": 1}})"), "fis.background: expected a string");
+  const std::string sphere = R"(, "objects": [{"mesh": "sphere"}])";
+  EXPECT_TRUE(shadetwin::loadScene(write("t7.json", "{" + kOkScene + sphere + R"(, "fis": {"background": "atlas"}})")).fisBackgroundAtlas);
+  EXPECT_FALSE(shadetwin::loadScene(write("t8.json", "{" + kOkScene + sphere + "}")).fisBackgroundAtlas);
+}
+
+TEST(BadInput, SceneOverridesNameTheOptionAndTheScene) {
+  // The command line's scene options (applyOverrides: one definition for every command that renders).
+  const std::string path = write("ov.json", "{" + kOkScene + R"(, "objects": [{"mesh": "sphere"}]})");
+  shadetwin::SceneOverrides o;
+  o.visMaps = 4;
+  EXPECT_MENTIONS(errorOf([&] { shadetwin::loadScene(path, o); }), "--vis-maps: ");
+  EXPECT_MENTIONS(errorOf([&] { shadetwin::loadScene(path, o); }), "ov.json has no \"visibility\" block");
+  o = {};
+  o.technique = "phong";
+  EXPECT_MENTIONS(errorOf([&] { shadetwin::loadScene(path, o); }), "unknown technique 'phong'");
+  o = {};
+  o.technique = "kdtree-mis", o.width = 7, o.height = 5, o.samples = 3, o.blocks = 99;
+  const shadetwin::Scene s = shadetwin::loadScene(path, o);
+  EXPECT_EQ(s.technique, "kdtree-mis");
+  EXPECT_EQ(s.width, 7u);
+  EXPECT_EQ(s.height, 5u);
+  EXPECT_EQ(s.misSamples, 3u);
+  EXPECT_EQ(s.fisSamples, 3u);
+  EXPECT_EQ(s.glintGxdSamples, 3u);
+  EXPECT_EQ(s.envBlocks, 99u);
+  const shadetwin::Scene plain = shadetwin::loadScene(path, shadetwin::SceneOverrides{});
+  EXPECT_EQ(plain.technique, "fis");
+  EXPECT_EQ(plain.fisSamples, 40u);
 }
 
 TEST(BadInput, CameraWithZeroFieldOfViewOrDegenerateFrameIsAnError) {

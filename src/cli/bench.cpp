@@ -26,11 +26,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int benchCommand(const BenchOptions& opts, std::ostream& log) {
-  Scene scene = loadScene(opts.scene);
-  if (opts.width) scene.width = opts.width;
-  if (opts.height) scene.height = opts.height;
-  if (!opts.technique.empty()) setTechnique(scene, opts.technique);
-  if (opts.samples) (usesMisPass(scene.technique) ? scene.misSamples : scene.fisSamples) = opts.samples;
+  Scene scene = loadScene(opts.scene, opts);
   if (scene.technique == "glints-gxd")
     throw std::invalid_argument("bench: glints-gxd shades on the host (no device pass to time); its times are in sweep --technique glints");
   std::vector<std::string> passes;

@@ -10,17 +10,16 @@
 #include <ostream>
 #include <string>
 
+#include "scene/scene.h"
+
 namespace shadetwin {
 
-struct BenchOptions {
+struct BenchOptions : SceneOverrides {  // the shared scene options; a --technique makes passes default to gbuffer,shade
   std::string scene = "scenes/bunny.json";
   std::string passes = "gbuffer,shadow";  // comma-separated: gbuffer, shadow, shade
-  uint32_t width = 0, height = 0;
   uint32_t repeat = 5;
   uint32_t directions = 16, shadowSize = 1024;
   std::string device;  // Vulkan device substring; empty = lavapipe
-  std::string technique;  // overrides the scene's shading technique (and then passes default to gbuffer,shade)
-  uint32_t samples = 0;   // fis samples per pixel (0: the scene's)
 };
 
 int benchCommand(const BenchOptions& opts, std::ostream& log);

@@ -20,6 +20,40 @@
 #include "util/output_file.h"
 #include "vk/context.h"
 
+namespace {
+
+// The scene options, defined once for every command that renders (issue 22): which of them a command takes.
+enum SceneOptions : unsigned { kSize = 1, kTechnique = 2, kSamples = 4, kBlocks = 8, kVisMaps = 16, kAllScene = 31 };
+
+// The scene file, as the first positional argument or --scene (both spellings on every command), and the overrides
+// of shadetwin::SceneOverrides that `which` names.
+void addSceneOptions(CLI::App* cmd, std::string& scene, shadetwin::SceneOverrides& o, unsigned which, bool required = false) {
+  auto* file = cmd->add_option("scene,--scene", scene,
+                               "scene file (JSON, see README" + (scene.empty() ? std::string(")") : "; default " + scene + ")"));
+  if (required) file->required();
+  if (which & kTechnique)
+    cmd->add_option("--technique", o.technique,
+                    "shading technique (default: the scene's): fis, unfiltered, stochastic, env, mirror, kdtree-mis, alias-mis, "
+                    "inversion-mis, glints, glints-gxd");
+  if (which & kSamples)
+    cmd->add_option("--samples", o.samples,
+                    "samples of the technique (default: the scene's): fis samples per pixel, env lights, MIS sample pairs, "
+                    "G x D sample pairs")
+        ->check(CLI::Range(1, 1 << 20));
+  if (which & kSize) {
+    cmd->add_option("--width", o.width, "override the scene's image width")->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", o.height, "override the scene's image height")->check(CLI::Range(1, 16384));
+  }
+  if (which & kBlocks)
+    cmd->add_option("--blocks", o.blocks, "kd-tree / alias blocks of the *-mis samplers (default: the scene's mis.blocks)")
+        ->check(CLI::Range(1, 1 << 20));
+  if (which & kVisMaps)
+    cmd->add_option("--vis-maps", o.visMaps, "shadow maps K of the scene's visibility block (default: the scene's)")
+        ->check(CLI::Range(1, 1024));
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   shadetwin::installInterruptCleanup();  // SIGINT / SIGTERM remove every output's temporary (util/output_file.h)
   CLI::App app{"shadetwin: a bit-exact CPU twin of a Vulkan image-based-lighting renderer"};
@@ -39,11 +73,9 @@ int main(int argc, char** argv) {
     const std::string w = what;
     if (w == "raster" || w == "shadow" || w == "shade" || w == "frame" || w == "paraboloid" || w == "sh" ||
         w == "visibility" || w == "glint-lighting") {
-      sub->add_option("--scene", vo.scene, "scene file")->required();
-      if (w != "shadow" && w != "paraboloid" && w != "sh" && w != "glint-lighting") {
-        sub->add_option("--width", vo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
-        sub->add_option("--height", vo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
-      }
+      // The suites that render a frame's passes take every scene option; the technique-input suites the file.
+      const bool frame = w == "raster" || w == "shade" || w == "frame" || w == "visibility";
+      addSceneOptions(sub, vo.scene, vo, !frame ? 0u : w == "visibility" ? kAllScene & ~kVisMaps : kAllScene, true);  // visibility: --maps K
     }
     if (w == "shadow") {
       sub->add_option("--directions", vo.directions, "number of shadow-map directions")->check(CLI::Range(1, 4096));
@@ -67,7 +99,6 @@ int main(int argc, char** argv) {
     }
     if (w == "paraboloid")
       sub->add_option("--face-size", vo.faceSize, "face size S of the 2S x S atlas")->check(CLI::Range(4, 8192));
-    if (w == "shade" || w == "frame") sub->add_option("--technique", vo.technique, "shading technique (default: the scene's)");
     if (std::string(what) == "texture") {
       sub->add_flag("--finite", vo.finiteTexels, "only finite normal texel values (no inf, NaN or denormals)");
       sub->add_option("--filters", vo.filters,
@@ -87,11 +118,9 @@ int main(int argc, char** argv) {
   app.add_subcommand("devices", "list Vulkan devices");
   shadetwin::RenderOptions ro;
   auto* render = app.add_subcommand("render", "render a scene (default scenes/bunny.json) to an EXR and a tone-mapped PNG");
-  render->add_option("scene", ro.scene, "scene file (JSON, see README)");
+  addSceneOptions(render, ro.scene, ro, kAllScene);
   render->add_option("--device", ro.device, "emu (the emulated GPU) or vulkan")->check(CLI::IsMember({"emu", "vulkan"}));
   render->add_option("--out", ro.out, "output EXR (the PNG is written next to it); default <scene>.exr");
-  render->add_option("--width", ro.width, "override the scene's image width")->check(CLI::Range(1, 16384));
-  render->add_option("--height", ro.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   render->add_option("--profile", ro.profile, "device profile the emulator follows (lavapipe, nvidia)");
   render->add_option("--frames", ro.frames, "frames to render (OUT_0000.exr, ...); technique inputs are rebuilt only when the environment changes")
       ->check(CLI::Range(1, 100000));
@@ -99,20 +128,13 @@ int main(int argc, char** argv) {
   render->add_option("--object-rotate", ro.objectRotate,
                      "degrees the first object turns about its vertical axis per frame: the G-buffer, shadow maps and "
                      "visibility fit are redone every frame");
-  render->add_option("--technique", ro.technique, "shading technique (default: the scene's; glints-gxd: the glints ground truth on the host)");
-  render->add_option("--samples", ro.samples, "samples of the technique: fis / env samples, MIS or G x D sample pairs (default: the scene's)")
-      ->check(CLI::Range(1, 1 << 20));
-  render->add_option("--blocks", ro.blocks, "kd-tree blocks of kdtree-mis / alias-mis (default: the scene's mis.blocks, 6144)")
-      ->check(CLI::Range(1, 1 << 20));
   shadetwin::ReferenceCommandOptions refo;
   auto* ref = app.add_subcommand("reference", "ground truth: Embree + TBB Monte Carlo with MIS, written as EXR + PNG");
-  ref->add_option("scene", refo.scene, "scene file (JSON, see README)");
+  addSceneOptions(ref, refo.scene, refo, kSize);  // the ground truth has no technique
   ref->add_option("--spp", refo.render.spp, "samples per pixel (each: one environment and one BRDF direction)")->check(CLI::Range(1, 1 << 24));
   ref->add_option("--seed", refo.render.seed, "random seed");
   ref->add_flag("--visibility", refo.render.visibility, "trace an occlusion ray for every direction");
   ref->add_option("--out", refo.out, "output EXR; default <scene>_ref.exr");
-  ref->add_option("--width", refo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
-  ref->add_option("--height", refo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   std::string cmpA, cmpB;
   auto* cmp = app.add_subcommand("compare", "error metrics of image A against reference B: RMSE, relMSE, PSNR");
   cmp->add_option("A", cmpA, "image")->required();
@@ -130,16 +152,10 @@ int main(int argc, char** argv) {
   shadetwin::ModelOptions mo;
   auto* modelCmd = app.add_subcommand("model", "predict a pass's time on a device from its counted work and the device's "
                                                "description, every pass of a frame; --validate against the software devices");
-  modelCmd->add_option("--scene", mo.scene, "scene file");
-  modelCmd->add_option("--technique", mo.technique, "shading technique (default: the scene's)");
+  addSceneOptions(modelCmd, mo.scene, mo, kAllScene);
   modelCmd->add_option("--device", mo.device, "device description devices/<D>.json: lavapipe, swiftshader, h100, h200");
   modelCmd->add_option("--devices", mo.devicesDir, "folder of the device descriptions (default devices)");
-  modelCmd->add_option("--width", mo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
-  modelCmd->add_option("--height", mo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
-  modelCmd->add_option("--samples", mo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
   modelCmd->add_option("--repeat", mo.repeat, "timed runs of each measured pass (the fastest is compared)")->check(CLI::Range(1, 100));
-  modelCmd->add_option("--vis-maps", mo.visMaps, "shadow maps K of the scene's visibility block (default: the scene's)")
-      ->check(CLI::Range(1, 1024));
   modelCmd->add_flag("--validate", mo.validate, "every shipped scene x technique on every present software device, ending with "
                                                 "the mean and worst absolute error");
   modelCmd->add_option("--scenes", mo.scenes, "--validate: scene files (default: every scenes/*.json)");
@@ -150,19 +166,16 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 20));
   modelCmd->add_flag("--calibrate-quick", mo.calibrateQuick, "--calibrate: calibrate's --quick (short runs; tests the path, not for shipped files)");
   auto* bench = app.add_subcommand("bench", "time passes on the emulator and on a Vulkan device in one run; last line: ratio emu/vulkan");
-  bench->add_option("--scene", bo.scene, "scene file");
+  addSceneOptions(bench, bo.scene, bo, kAllScene);
   bench->add_option("--passes", bo.passes, "comma-separated passes: gbuffer, shadow, shade");
-  bench->add_option("--width", bo.width, "override the scene's image width")->check(CLI::Range(1, 16384));
-  bench->add_option("--height", bo.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   bench->add_option("--repeat", bo.repeat, "timed runs per pass (median reported)")->check(CLI::Range(1, 1000));
   bench->add_option("--directions", bo.directions, "shadow-map directions")->check(CLI::Range(1, 4096));
   bench->add_option("--shadow-size", bo.shadowSize, "shadow-map resolution")->check(CLI::Range(1, 8192));
   bench->add_option("--device", bo.device, "Vulkan device (substring of its name; default lavapipe)");
   shadetwin::SweepOptions so;
   auto* sweep = app.add_subcommand("sweep", "speed against error: techniques x sample counts vs the reference; CSV + plots");
-  sweep->add_option("--scene", so.scene, "scene file");
+  addSceneOptions(sweep, so.scene, so, kSize | kBlocks);  // --technique, --samples, --vis-maps: the sweep's lists below
   sweep->add_option("--technique", so.techniques, "comma-separated: fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis");
-  sweep->add_option("--blocks", so.blocks, "kd-tree blocks of the *-mis techniques (default: the scene's)")->check(CLI::Range(1, 1 << 20));
   sweep->add_option("--maps", so.maps, "with a *-mis technique: environment maps (assets/hdri/NAME.exr) of the sampler study");
   sweep->add_option("--samples", so.samples, "comma-separated sample counts (glints: the G x D baseline's sample pairs)");
   sweep->add_option("--glint-orders", so.glintOrders, "with --technique glints: comma-separated SH degrees (<= 64)");
@@ -179,16 +192,12 @@ int main(int argc, char** argv) {
   sweep->add_option("--reference", so.reference, "reference EXR (default: render it)");
   sweep->add_option("--reference-spp", so.referenceSpp, "samples per pixel of the rendered reference")->check(CLI::Range(1, 1 << 20));
   sweep->add_option("--out", so.out, "output folder");
-  sweep->add_option("--width", so.width, "override the scene's image width")->check(CLI::Range(1, 16384));
-  sweep->add_option("--height", so.height, "override the scene's image height")->check(CLI::Range(1, 16384));
   sweep->add_option("--device", so.device, "Vulkan device (substring of its name; default lavapipe)");
   sweep->add_flag("!--no-vulkan", so.vulkan, "emulator only");
-  sweep->add_option("--vis-maps", so.visMaps,
+  sweep->add_option("--vis-maps", so.visMapCounts,
                     "comma-separated SH visibility map counts K for fis (0: none), against a reference with visibility");
   sweep->add_option("--vis-rays", so.visRays,
                     "rays per pixel of the Embree order-4 SH visibility fit (the SH-order error; 0: skip)")->check(CLI::Range(0, 1 << 20));
-  bench->add_option("--technique", bo.technique, "shading technique (default: the scene's); passes default to gbuffer,shade");
-  bench->add_option("--samples", bo.samples, "fis samples per pixel (default: the scene's)")->check(CLI::Range(1, 4096));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

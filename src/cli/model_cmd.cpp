@@ -162,16 +162,9 @@ std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, co
 }
 
 Scene sceneWith(const ModelOptions& o, const std::string& path, const std::string& technique) {
-  Scene scene = loadScene(path);
-  if (o.width) scene.width = o.width;
-  if (o.height) scene.height = o.height;
-  if (!technique.empty()) scene.technique = technique;
-  if (o.samples) scene.fisSamples = o.samples;
-  if (o.visMaps) {
-    if (!scene.visMaps) throw std::runtime_error(path + ": --vis-maps needs a scene with a \"visibility\" block");
-    scene.visMaps = o.visMaps;
-  }
-  return scene;
+  SceneOverrides ov = o;
+  ov.technique = technique;  // --validate runs each technique of a scene
+  return loadScene(path, ov);
 }
 
 bool isSoftware(const std::string& d) { return d == "lavapipe" || d == "swiftshader"; }

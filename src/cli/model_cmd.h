@@ -9,16 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene.h"
+
 namespace shadetwin {
 
-struct ModelOptions {
+struct ModelOptions : SceneOverrides {  // the shared scene options (--technique, --samples, --vis-maps, ...)
   std::string scene = "scenes/bunny.json";
-  std::string technique;             // default: the scene's
   std::string device = "lavapipe";   // lavapipe, swiftshader, h100, h200
   std::string devicesDir = "devices";
-  uint32_t width = 0, height = 0;
-  uint32_t samples = 0;              // fis samples (0: the scene's)
-  uint32_t visMaps = 0;              // shadow maps K of the scene's visibility block (0: the scene's)
   uint32_t repeat = 3;               // timed runs of each measured pass (the fastest is compared)
   bool validate = false;             // every shipped scene x technique x software device
   std::vector<std::string> scenes;   // --validate: the scenes (default: every file in scenes/)

@@ -86,12 +86,7 @@ std::string frameOut(const std::string& out, uint32_t frames, uint32_t f) {
 int renderCommand(const RenderOptions& opts, std::ostream& log) {
   const auto tStart = Clock::now();
   auto t0 = tStart;
-  Scene scene = loadScene(opts.scene);
-  if (opts.width) scene.width = opts.width;
-  if (opts.height) scene.height = opts.height;
-  if (opts.blocks) scene.envBlocks = opts.blocks;
-  if (!opts.technique.empty()) setTechnique(scene, opts.technique);
-  if (opts.samples) scene.fisSamples = scene.misSamples = scene.glintGxdSamples = opts.samples;
+  Scene scene = loadScene(opts.scene, opts);
   const double tScene = msSince(t0);
   if (opts.device != "emu" && opts.device != "vulkan") throw std::invalid_argument("--device " + opts.device + ": expected emu or vulkan");
   if (opts.frames == 0) throw std::invalid_argument("--frames: expected at least 1");
@@ -146,6 +141,7 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     o.samples = scene.glintGxdSamples;
     return glintGxdImage(scene, g.texels.data(), g.width, g.height, renv, o);
   };
+  std::string lastPng;
   for (uint32_t f = 0; f < opts.frames; ++f) {
     scene.misFrame = f;
     if (moving) scene.objects[0].model = rotateAboutOwnAxis(model0, opts.objectRotate * f);
@@ -258,11 +254,13 @@ int renderCommand(const RenderOptions& opts, std::ostream& log) {
     log << passes.str();
     log << "  write EXR + PNG          " << std::setw(8) << tWrite << " ms\n";
     log << "wrote " << exr << " and " << png << "\n";
+    lastPng = png;
   }
   if (opts.frames > 1)
     log << opts.frames << " frames, technique inputs built " << cache.builds() << " time(s)\n";
   log << "peak memory " << formatBytes(peakResidentBytes()) << " resident (" << std::setprecision(1) << msSince(tStart) / 1000.0
       << " s in all)\n";
+  log << "image: " << std::filesystem::absolute(lastPng).lexically_normal().string() << "\n";  // the last line: what to open
   return 0;
 }
 

@@ -133,10 +133,7 @@ void envSamplerStudy(const SweepOptions& opts, const Scene& scene, const emu::De
 
 int sweepCommand(const SweepOptions& opts, std::ostream& log) {
   if (opts.techniques == "glints") return glintsSweep(opts, log);
-  Scene scene = loadScene(opts.scene);
-  if (opts.width) scene.width = opts.width;
-  if (opts.height) scene.height = opts.height;
-  if (opts.blocks) scene.envBlocks = opts.blocks;
+  Scene scene = loadScene(opts.scene, opts);
   const std::vector<std::string> techniques = splitList(opts.techniques);
   const std::vector<uint32_t> samples = parseCounts(opts.samples, "--samples", "a count", 1, 4096);
   for (const std::string& t : techniques)
@@ -144,7 +141,7 @@ int sweepCommand(const SweepOptions& opts, std::ostream& log) {
       throw std::invalid_argument("--technique: '" + t +
                                   "' is not a sampling technique (fis, unfiltered, stochastic, env, kdtree-mis, alias-mis, inversion-mis; glints alone runs the glints study)");
   if (techniques.empty() || samples.empty()) throw std::invalid_argument("sweep: no techniques or no sample counts");
-  const std::vector<uint32_t> visMaps = parseCounts(opts.visMaps, "--vis-maps", "a map count", 0, 1024);
+  const std::vector<uint32_t> visMaps = parseCounts(opts.visMapCounts, "--vis-maps", "a map count", 0, 1024);
   std::filesystem::create_directories(opts.out);
   std::ostringstream quiet;
   EnvironmentMap env = loadEnvironment(scene, quiet);

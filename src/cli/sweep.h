@@ -24,21 +24,21 @@
 
 namespace shadetwin {
 
-struct SweepOptions {
+// The shared scene options it takes: --width, --height, --blocks (its --technique, --samples and --vis-maps are lists,
+// the sweep's axes).
+struct SweepOptions : SceneOverrides {
   std::string scene = "scenes/spheres.json";
   std::string techniques = "fis,unfiltered,stochastic,env";
   std::string samples = "4,8,16,32,64,128,256";
   std::string reference;         // EXR of the reference; empty: render it (referenceSpp per pixel)
   uint32_t referenceSpp = 512;
   std::string out = "sweep";     // output folder: sweep.csv, rmse_vs_samples.png, rmse_vs_time.png, reference.exr
-  uint32_t width = 0, height = 0;
   std::string device;            // Vulkan device substring; empty = lavapipe
   bool vulkan = true;            // --no-vulkan: emulator only
-  uint32_t blocks = 0;           // kd-tree blocks (0: the scene's mis.blocks)
   std::string maps = "forest,courtyard,studio,city";  // sampler study (with a *-mis technique)
   // SH visibility study (issue 16): comma-separated map counts K (0 = no visibility) of technique fis
   // at the scene's sample count, against a reference with visibility; writes visibility.csv.
-  std::string visMaps;
+  std::string visMapCounts;
   uint32_t visRays = 10000;  // the per-pixel Embree SH fit (the best an order-4 SH can do); 0: skip
   // Glints study (issue 17, --technique glints): SH degrees of the technique; --samples is then the
   // G x D baseline's sample ladder and --reference-spp its reference (cli/sweep_glints.cpp).

@@ -34,9 +34,7 @@
 namespace shadetwin {
 
 int glintsSweep(const SweepOptions& opts, std::ostream& log) {
-  Scene scene = loadScene(opts.scene);
-  if (opts.width) scene.width = opts.width;
-  if (opts.height) scene.height = opts.height;
+  Scene scene = loadScene(opts.scene, opts);
   scene.technique = "glints";
   if (!std::all_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.glints; }))
     throw std::invalid_argument("sweep --technique glints: every material of " + opts.scene + " needs a glints block");

@@ -23,8 +23,10 @@ std::vector<MemoryNeed> frameMemory(const Scene& s, uint32_t envWidth, uint32_t 
   n.push_back({"image", px * (16.0 + 16.0 + 4.0 + (vk ? 32.0 : 0.0))});
   if (usesMisPass(s.technique)) n.push_back({"progressive mean", px * 32.0});
   // The environment: the file's channels and the RGBA32F level 0 while loading, then the MIP chain as levels and as the
-  // emulator's texture; a device's image and its staging copy.
-  n.push_back({"environment", texels * (4.0 * envChannels + 16.0 + 2 * 16.0 * mip + (vk ? 2 * 16.0 * mip : 0.0))});
+  // emulator's texture; a device's image and its staging copy (fis on a device: one more pair, the atlas's resampling
+  // reads one and the shading pass's background another).
+  const double deviceCopies = vk ? (usesFisPass(s.technique) ? 4.0 : 2.0) : 0.0;
+  n.push_back({"environment", texels * (4.0 * envChannels + 16.0 + 2 * 16.0 * mip + deviceCopies * 16.0 * mip)});
   if (usesMisPass(s.technique)) n.push_back({"sampler tables", texels * 16.0});
   if (usesFisPass(s.technique)) n.push_back({"paraboloid atlas", 2.0 * s.fisFaceSize * s.fisFaceSize * 16.0 * mip * (vk ? 3 : 1)});
   if (s.visMaps && (usesFisPass(s.technique) || usesMisPass(s.technique))) {

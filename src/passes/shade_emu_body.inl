@@ -127,6 +127,9 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
                  std::vector<float>& out, const VisibilityImage* vis) {
   const emu::Texture& atlas = *in.atlas;
   const shade::Sampler2D s = environmentSampler(atlas, dev, false);  // the atlas clamps in u too
+  const shade::Sampler2D env = environmentSampler(*in.environment, dev, true);  // the background
+  const uint32_t background = scene.fisBackgroundAtlas ? shade::SHADE_EMU_NS::kFisBackgroundAtlas
+                                                       : shade::SHADE_EMU_NS::kFisBackgroundEnvironment;
   const F8 maxLod(float(atlas.levelCount() - 1)), levelC(fisLevelConstant(scene)), bias(scene.fisLevelBias),
       intensity(scene.environmentIntensity);
   V3x c[9];
@@ -144,7 +147,7 @@ void shadeFisEmu(const Scene& scene, const GBuffer& g, const ShadeInputs& in, co
   const shade::SHADE_EMU_NS::VisLighting vl{sh16(&in.visLighting[0]), sh16(&in.visLighting[16]), sh16(&in.visLighting[32])};
   shadePixelBlocks(scene, g, dev, 16, uint32_t(mats.size()), out, [&](const PixelBlock& p) {
     const auto m = surface(p, mats, maps);
-    return shade::SHADE_EMU_NS::shadeFis(s, mode, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.pixel, p.g0, p.g1, p.g2,
+    return shade::SHADE_EMU_NS::shadeFis(s, env, background, mode, maxLod, levelC, bias, scene.fisSamples, intensity, sh, p.pixel, p.g0, p.g1, p.g2,
                                p.eye, p.ray, m.diffuse, m.specular, m.brdf, visMode,
                                laneVisibility(p, useVis ? vis : nullptr), vl);
   });

@@ -19,19 +19,21 @@ namespace {
 #include "shade_glints_comp.inc"
 
 // One push block for both kernels: shade_mirror.comp declares the first 96 bytes (its last uint is
-// padding), shade_fis.comp all 112.
+// padding), shade_fis.comp all 116.
 struct ShadePush {
   float eye[4], fwd[4], right[4], down[4];
   float invW, invH, maxLod, intensity;
   uint32_t width, count, materialCount, sampleCount;
   float levelConstant, levelBias;
   uint32_t mode, visMode;
+  uint32_t background;
 };
 static_assert(offsetof(ShadePush, levelConstant) == 96, "the first 96 bytes are shade_mirror.comp's push block");
-static_assert(sizeof(ShadePush) == 112, "ShadePush must match the push block of shade_fis.comp");
+static_assert(offsetof(ShadePush, background) == 112 && sizeof(ShadePush) == 116,
+              "ShadePush must match the push block of shade_fis.comp");
 // What each kernel binds: mirror reads 96 push bytes, 4 bindings, {diffuse, specular} of the material
-// records (inputs/material.h, 32-byte stride) and the equirectangular map; fis all 112 bytes, binding
-// 4 = SH coefficients and 5 = material maps, the atlas (clamped in u); env 96 bytes (sampleCount =
+// records (inputs/material.h, 32-byte stride) and the equirectangular map; fis all 116 bytes, binding
+// 4 = SH coefficients, 5 = material maps and 6 = the equirectangular map (the background), the atlas (clamped in u); env 96 bytes (sampleCount =
 // light count), binding 4 = lights and 5 = material maps, the equirectangular map. fis and env read
 // whole 128-byte material records and G0..G3 (64 bytes per pixel), mirror G0, G1. The MIS kernel:
 // 96 bytes, binding 4 = MisSettingsGpu, 5 = material maps, 6 and 7 = the sampler's tables. glints:
@@ -44,7 +46,7 @@ struct KernelInfo {
   bool brdf, repeatU;
 };
 KernelInfo kernelInfo(const std::string& technique) {
-  if (usesFisPass(technique)) return {kSpv_shade_fis_comp, 6, sizeof(ShadePush), true, false};
+  if (usesFisPass(technique)) return {kSpv_shade_fis_comp, 7, sizeof(ShadePush), true, false};
   if (technique == "env") return {kSpv_shade_env_comp, 6, offsetof(ShadePush, levelConstant), true, true};
   if (usesMisPass(technique)) return {kSpv_shade_env_mis_comp, 8, offsetof(ShadePush, levelConstant), true, true};
   if (technique == "glints") return {kSpv_shade_glints_comp, 11, offsetof(ShadePush, levelConstant), false, true};
@@ -84,6 +86,8 @@ struct ShadePassVk::Impl {
   vk::Image maps;    // binding 5 (fis, env): material maps
   vk::Sampler mapSampler;
   std::unique_ptr<vk::Image> table, texels;  // *-mis: the environment sampler's tables (bindings 6, 7)
+  std::unique_ptr<vk::Image> background;      // fis: the equirectangular map (binding 6)
+  vk::Sampler backgroundSampler;
   vk::Sampler tableSampler;
   std::unique_ptr<vk::Image> glintSat, glintBins, glintMats, glintLighting, glintCoef, glintLobes;  // glints: bindings 5-10
   std::shared_ptr<const GlintInputs> glints;
@@ -119,10 +123,16 @@ struct ShadePassVk::Impl {
              VK_IMAGE_VIEW_TYPE_2D_ARRAY),
         mapSampler(c, materialMapSamplerInfo()),
         table(in.envTables ? dataTextureImage(c, *in.envTables->table) : nullptr),
-        texels(in.envTables ? dataTextureImage(c, *in.envTables->texels) : nullptr), tableSampler(c, dataTextureSamplerInfo()),
+        texels(in.envTables ? dataTextureImage(c, *in.envTables->texels) : nullptr),
+        background(usesFisPass(s.technique) && in.environment
+                       ? std::make_unique<vk::Image>(c, VK_FORMAT_R32G32B32A32_SFLOAT, in.environment->width(), in.environment->height(),
+                                                     1, in.environment->levels(), 16, VK_IMAGE_VIEW_TYPE_2D)
+                       : nullptr),
+        backgroundSampler(c, environmentSamplerInfo(true)), tableSampler(c, dataTextureSamplerInfo()),
         envTables(in.envTables.get()), info(ki),
         fis(usesFisPass(s.technique)), lightCount(in.lights.count), visibility(in.visibility),
         visLighting(in.visLighting) {
+    if (fis && !background) throw vk::Error("shading pass: technique " + s.technique + " needs the environment (its background)");
     if (fis)
       for (int k = 0; k < 9; ++k) {
         float* d = extra.as<float>() + 4 * k;
@@ -246,6 +256,8 @@ std::vector<float> ShadePassVk::run(const GBuffer& g, const VisibilityImage* vis
     push.levelBias = m.scene.fisLevelBias;
     push.mode = fisMode(m.scene);
     push.visMode = visMode;
+    push.background = m.scene.fisBackgroundAtlas ? shade::scalar::kFisBackgroundAtlas : shade::scalar::kFisBackgroundEnvironment;
+    b[6] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_NULL_HANDLE, m.background->view(), m.backgroundSampler.handle()};
   } else if (m.scene.technique == "env") {
     push.sampleCount = m.lightCount;
   }

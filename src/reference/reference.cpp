@@ -322,9 +322,7 @@ std::vector<float> referenceVisibilitySh(const Scene& scene, const std::vector<f
 }
 
 int referenceCommand(const ReferenceCommandOptions& opts, std::ostream& log) {
-  Scene scene = loadScene(opts.scene);
-  if (opts.width) scene.width = opts.width;
-  if (opts.height) scene.height = opts.height;
+  Scene scene = loadScene(opts.scene, opts);
   const std::string out = opts.out.empty() ? std::filesystem::path(opts.scene).stem().string() + "_ref.exr" : opts.out;
   checkWritable(out);  // before the render: a missing output folder costs nothing
   {

@@ -46,10 +46,9 @@ std::vector<float> referenceVisibilitySh(const Scene& scene, const std::vector<f
 
 /// CLI: loads the scene and environment, renders, writes the EXR (and a tone-mapped PNG), with a
 /// progress bar on stderr.
-struct ReferenceCommandOptions {
+struct ReferenceCommandOptions : SceneOverrides {  // the shared scene options it takes: --width, --height
   std::string scene = "scenes/bunny.json";
   std::string out;
-  uint32_t width = 0, height = 0;
   ReferenceOptions render;
 };
 int referenceCommand(const ReferenceCommandOptions& opts, std::ostream& log);

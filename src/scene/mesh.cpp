@@ -7,7 +7,11 @@
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <map>
+#include <tuple>
 #include <limits>
 #include <fstream>
 #include <numbers>
@@ -122,18 +126,120 @@ Mesh makeTorus(float major, float minor, uint32_t segments, uint32_t sides) {
   return m;
 }
 
-void completeMesh(Mesh& m) {
-  const size_t n = m.positions.size();
-  if (m.normals.size() != n) {
-    m.normals.assign(n, {0, 0, 0});
-    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
-      uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
-      F3 f = v3::cross(sub(m.positions[b], m.positions[a]), sub(m.positions[c], m.positions[a]));  // |f| = 2 area
-      for (uint32_t v : {a, b, c})
-        for (int k = 0; k < 3; ++k) m.normals[v][k] += f[k];
-    }
-    for (auto& nv : m.normals) nv = normalized(nv, {0, 1, 0});
+namespace {
+
+// Bits of a float with -0 read as +0 (positions that compare equal weld).
+uint32_t weldBits(float x) {
+  if (x == 0.0f) x = 0.0f;
+  uint32_t b;
+  std::memcpy(&b, &x, 4);
+  return b;
+}
+
+struct UnionFind {
+  std::vector<uint32_t> parent;
+  explicit UnionFind(size_t n) : parent(n) {
+    for (size_t i = 0; i < n; ++i) parent[i] = uint32_t(i);
   }
+  uint32_t find(uint32_t a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  }
+  void join(uint32_t a, uint32_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smallest corner is a set's root
+  }
+};
+
+}  // namespace
+
+WeldStats weldNormals(Mesh& m, float creaseDegrees) {
+  const size_t n = m.positions.size(), corners = m.indices.size() - m.indices.size() % 3;
+  // Position classes: vertices at the same position (bitwise, -0 = +0) are one point of the surface.
+  std::vector<uint32_t> cls(n);
+  std::map<std::array<uint32_t, 3>, uint32_t> classOf;
+  for (size_t i = 0; i < n; ++i) {
+    const auto& p = m.positions[i];
+    cls[i] = classOf.emplace(std::array<uint32_t, 3>{weldBits(p[0]), weldBits(p[1]), weldBits(p[2])}, uint32_t(classOf.size()))
+                 .first->second;
+  }
+  WeldStats st;
+  st.positionClasses = classOf.size();
+  // Face normals: f = (b - a) x (c - a), |f| = twice the area (the weight); unit normals in double for the angle test.
+  const size_t faces = corners / 3;
+  std::vector<F3> f(faces);
+  std::vector<std::array<double, 3>> u(faces);
+  std::vector<char> flat(faces);
+  for (size_t t = 0; t < faces; ++t) {
+    const uint32_t a = m.indices[3 * t], b = m.indices[3 * t + 1], c = m.indices[3 * t + 2];
+    f[t] = v3::cross(sub(m.positions[b], m.positions[a]), sub(m.positions[c], m.positions[a]));
+    const double l = std::sqrt(v3::dot(f[t], f[t]));
+    flat[t] = !(l > 1e-30);
+    u[t] = flat[t] ? std::array<double, 3>{0, 0, 0} : std::array<double, 3>{f[t][0] / l, f[t][1] / l, f[t][2] / l};
+  }
+  // Smoothing groups of corners. The corners of one vertex index are one group (the mesh shares that vertex: it asked
+  // for one normal there). Corners of two different vertices at one position join across each edge their faces share
+  // (the same two position classes) unless the faces meet at more than the crease angle: a duplicated vertex is either
+  // a patch border (the teapot: join) or an authored hard edge (a cube of 24 vertices: keep). Zero-area faces decide
+  // nothing (a sliver along a crease would join both sides).
+  UnionFind groups(corners);
+  {
+    std::vector<uint32_t> firstCorner(n, UINT32_MAX);
+    for (size_t c = 0; c < corners; ++c) {
+      uint32_t& fc = firstCorner[m.indices[c]];
+      if (fc == UINT32_MAX) fc = uint32_t(c);
+      else groups.join(fc, uint32_t(c));
+    }
+  }
+  const double cosCrease = std::cos(double(creaseDegrees) * std::numbers::pi / 180.0);
+  struct Spoke {
+    uint32_t at, to, corner;
+  };
+  std::vector<Spoke> spokes;
+  spokes.reserve(2 * corners);
+  for (size_t c = 0; c < corners; ++c) {
+    const size_t t = c / 3, k = c % 3;
+    const uint32_t at = cls[m.indices[c]];
+    for (size_t o : {(k + 1) % 3, (k + 2) % 3}) {
+      const uint32_t to = cls[m.indices[3 * t + o]];
+      if (to != at) spokes.push_back({at, to, uint32_t(c)});
+    }
+  }
+  std::sort(spokes.begin(), spokes.end(), [](const Spoke& x, const Spoke& y) {
+    return std::tie(x.at, x.to, x.corner) < std::tie(y.at, y.to, y.corner);
+  });
+  for (size_t i = 0; i < spokes.size();) {
+    size_t j = i;
+    while (j < spokes.size() && spokes[j].at == spokes[i].at && spokes[j].to == spokes[i].to) ++j;
+    for (size_t a = i; a < j; ++a)
+      for (size_t b = a + 1; b < j; ++b) {  // an edge has two faces on a manifold, a few on others
+        const uint32_t ca = spokes[a].corner, cb = spokes[b].corner;
+        const size_t fa = ca / 3, fb = cb / 3;
+        if (m.indices[ca] == m.indices[cb] || flat[fa] || flat[fb]) continue;
+        const double d = u[fa][0] * u[fb][0] + u[fa][1] * u[fb][1] + u[fa][2] * u[fb][2];
+        if (d >= cosCrease) groups.join(ca, cb);
+        else ++st.creaseEdges;
+      }
+    i = j;
+  }
+  // A group's normal: the area-weighted sum of its faces, in face order and in float (a vertex no duplicate touches
+  // gets the bits the per-index sum gave: the group is its corners).
+  std::vector<F3> sum(corners, F3{0, 0, 0});
+  std::vector<char> root(corners, 0);
+  for (size_t c = 0; c < corners; ++c) {
+    const uint32_t g = groups.find(uint32_t(c));
+    root[g] = 1;
+    for (int k = 0; k < 3; ++k) sum[g][k] += f[c / 3][k];
+  }
+  for (char r : root) st.groups += size_t(r);
+  m.normals.assign(n, F3{0, 1, 0});  // a vertex no triangle uses keeps the fallback
+  for (size_t c = 0; c < corners; ++c) m.normals[m.indices[c]] = normalized(sum[groups.find(uint32_t(c))], {0, 1, 0});
+  return st;
+}
+
+void completeMesh(Mesh& m, float creaseDegrees) {
+  if (m.normals.size() != m.positions.size()) weldNormals(m, creaseDegrees);
+  const size_t n = m.positions.size();
   if (m.uvs.size() != n) {  // spherical about the bounding-box centre
     const auto [lo, hi] = meshBounds(m);
     F3 c{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
@@ -145,9 +251,24 @@ void completeMesh(Mesh& m) {
     }
   }
   if (m.tangents.size() != n) {  // UV-gradient tangents (Lengyel), orthogonalised
+    // Accumulated per weld class (position, normal and UV all equal): vertices a patch border duplicated share one
+    // tangent, a UV seam or a crease keeps its own.
+    std::vector<uint32_t> weld(n);
+    {
+      std::map<std::array<uint32_t, 8>, uint32_t> classOf;
+      for (size_t i = 0; i < n; ++i) {
+        const auto &p = m.positions[i], &nn = m.normals[i];
+        const auto& uv = m.uvs[i];
+        weld[i] = classOf
+                      .emplace(std::array<uint32_t, 8>{weldBits(p[0]), weldBits(p[1]), weldBits(p[2]), weldBits(nn[0]),
+                                                       weldBits(nn[1]), weldBits(nn[2]), weldBits(uv[0]), weldBits(uv[1])},
+                               uint32_t(i))
+                      .first->second;
+      }
+    }
     std::vector<F3> t(n, F3{0, 0, 0}), b(n, F3{0, 0, 0});
     for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
-      uint32_t v[3] = {m.indices[i], m.indices[i + 1], m.indices[i + 2]};
+      uint32_t v[3] = {weld[m.indices[i]], weld[m.indices[i + 1]], weld[m.indices[i + 2]]};
       F3 e1 = sub(m.positions[v[1]], m.positions[v[0]]), e2 = sub(m.positions[v[2]], m.positions[v[0]]);
       float du1 = m.uvs[v[1]][0] - m.uvs[v[0]][0], dv1 = m.uvs[v[1]][1] - m.uvs[v[0]][1];
       float du2 = m.uvs[v[2]][0] - m.uvs[v[0]][0], dv2 = m.uvs[v[2]][1] - m.uvs[v[0]][1];
@@ -162,10 +283,11 @@ void completeMesh(Mesh& m) {
     m.tangents.resize(n);
     for (size_t i = 0; i < n; ++i) {
       F3 nn = m.normals[i];
-      double d = v3::dot(nn, t[i]);
-      F3 tt{float(t[i][0] - nn[0] * d), float(t[i][1] - nn[1] * d), float(t[i][2] - nn[2] * d)};
+      const F3 &ti = t[weld[i]], &bi = b[weld[i]];
+      double d = v3::dot(nn, ti);
+      F3 tt{float(ti[0] - nn[0] * d), float(ti[1] - nn[1] * d), float(ti[2] - nn[2] * d)};
       tt = normalized(tt, orthogonal(nn));
-      float w = v3::dot(v3::cross(nn, tt), b[i]) < 0.0 ? -1.0f : 1.0f;
+      float w = v3::dot(v3::cross(nn, tt), bi) < 0.0 ? -1.0f : 1.0f;
       m.tangents[i] = {tt[0], tt[1], tt[2], w};
     }
   }

@@ -53,9 +53,25 @@ F3 normalized(F3 a, F3 fallback);
 /// Axis-aligned bounds {min, max} of the positions.
 std::array<std::array<float, 3>, 2> meshBounds(const Mesh& m);
 
-/// Fills normals (area-weighted face normals) when absent, UVs (spherical) when absent, and
-/// tangents (from UV gradients, Gram-Schmidt against the normal) when absent.
-void completeMesh(Mesh& m);
+/// What weldNormals did: distinct positions, smoothing groups (one normal each), edges between duplicated vertices
+/// kept sharp (counted from each end).
+struct WeldStats {
+  size_t positionClasses = 0, groups = 0, creaseEdges = 0;
+};
+/// The default crease angle between the faces of duplicated vertices: above it an edge stays sharp. Measured
+/// (tests/mesh_test.cpp): the npm teapot's patch borders meet at up to 69.3 degrees (a coarse tessellation), a cube's
+/// faces at 90.
+inline constexpr float kCreaseDegrees = 80.0f;
+/// Generates normals with duplicated vertices welded: the corners of one vertex index are one smoothing group (a
+/// shared vertex stays smooth, so a mesh without duplicates gets exactly the per-index area-weighted normals); the
+/// corners of different vertices at one position (bitwise, -0 = +0) join across each edge their faces share unless the
+/// faces meet at more than `creaseDegrees`. Each group's normal is the area-weighted sum of its faces. The npm teapot's
+/// duplicated patch borders therefore get equal normals, a cube of 24 vertices keeps its edges. Zero-area faces join
+/// nothing. Replaces m.normals; vertices and indices are unchanged.
+WeldStats weldNormals(Mesh& m, float creaseDegrees = kCreaseDegrees);
+/// Fills normals (weldNormals) when absent, UVs (spherical) when absent, and tangents (from UV gradients,
+/// Gram-Schmidt against the normal, accumulated over vertices equal in position, normal and UV) when absent.
+void completeMesh(Mesh& m, float creaseDegrees = kCreaseDegrees);
 /// Checks indices and finiteness; throws MeshError naming `what` and the problem.
 void validateMesh(const Mesh& m, const std::string& what);
 

@@ -210,6 +210,24 @@ void setTechnique(Scene& scene, const std::string& technique) {
   scene.technique = technique;
 }
 
+void applyOverrides(Scene& scene, const SceneOverrides& o) {
+  if (!o.technique.empty()) setTechnique(scene, o.technique);
+  if (o.width) scene.width = o.width;
+  if (o.height) scene.height = o.height;
+  if (o.samples) scene.fisSamples = scene.misSamples = scene.glintGxdSamples = o.samples;
+  if (o.blocks) scene.envBlocks = o.blocks;
+  if (o.visMaps) {
+    if (!scene.visMaps) throw std::invalid_argument("--vis-maps: " + scene.path + " has no \"visibility\" block");
+    scene.visMaps = o.visMaps;
+  }
+}
+
+Scene loadScene(const std::string& path, const SceneOverrides& o) {
+  Scene s = loadScene(path);
+  applyOverrides(s, o);
+  return s;
+}
+
 Scene loadScene(const std::string& path) {
   std::ifstream f(path);
   if (!f) throw SceneError(path + ": cannot open scene file");
@@ -272,11 +290,15 @@ Scene loadScene(const std::string& path) {
   if (j.contains("fis")) {
     const json& f = j["fis"];
     if (!f.is_object()) R.fail("fis", "expected an object with samples, k, face_size");
-    R.keys(f, "fis", {"samples", "k", "face_size", "level_bias"});
+    R.keys(f, "fis", {"samples", "k", "face_size", "level_bias", "background"});
     s.fisSamples = uint32_t(R.number(f, "fis.samples", 40, 1, 4096));
     s.fisK = R.number(f, "fis.k", 4, 1e-3f, 1e6f);
     s.fisFaceSize = uint32_t(R.number(f, "fis.face_size", 256, 4, 8192));
     s.fisLevelBias = R.number(f, "fis.level_bias", 0, 0, 16);
+    const std::string bg = R.string(f, "fis.background", "environment");
+    if (bg != "environment" && bg != "atlas")
+      R.fail("fis.background", "unknown background '" + bg + "' (expected: environment or atlas)");
+    s.fisBackgroundAtlas = bg == "atlas";
   }
   if (j.contains("glints")) {
     const json& f = j["glints"];

@@ -110,6 +110,9 @@ struct Scene {
   float fisK = 4.0f;
   float fisLevelBias = 0.0f;  // added after the max: 1 = the book chapter's form (with k = 1)
   uint32_t fisFaceSize = 256;
+  // What background pixels show ("fis": {"background": ...}): "environment" (default: the equirectangular map, as
+  // every other technique) or "atlas" (the dual-paraboloid atlas at level 0: what the pass read before issue 22).
+  bool fisBackgroundAtlas = false;
   // MIS techniques ("mis" block): sample pairs (one environment + one BRDF sample) per pixel and
   // frame, the heuristic (index into kMisHeuristics), kd-tree blocks, the Philox seed; misFrame is the
   // frame the pass draws random numbers for (set per frame by render --frames, 0 otherwise).
@@ -154,6 +157,22 @@ Scene loadScene(const std::string& path);
 /// technique (listing the known ones) or a glints technique on a scene with a material lacking a glints
 /// block (naming the scene file and the material).
 void setTechnique(Scene& scene, const std::string& technique);
+
+/// What a command line may change of a scene: the same options on every command that renders a frame
+/// (src/cli/main.cpp addSceneOptions defines them once). 0 or empty keeps the scene's value.
+struct SceneOverrides {
+  std::string technique;            // --technique (setTechnique's checks)
+  uint32_t width = 0, height = 0;   // --width, --height
+  uint32_t samples = 0;             // --samples: the technique's samples (fis: per pixel; env: lights; *-mis: sample
+                                    // pairs per frame; glints-gxd: G x D pairs)
+  uint32_t blocks = 0;              // --blocks: kd-tree / alias blocks of the *-mis samplers
+  uint32_t visMaps = 0;             // --vis-maps: shadow maps K of the scene's "visibility" block
+};
+/// Applies `o` to `scene`; throws std::invalid_argument naming the scene file and the option for an unknown technique,
+/// a glints technique on a scene without glints materials, or --vis-maps on a scene without a visibility block.
+void applyOverrides(Scene& scene, const SceneOverrides& o);
+/// loadScene(path) with `o` applied.
+Scene loadScene(const std::string& path, const SceneOverrides& o);
 /// The repository root guess used to resolve `assets/...`: the scene file's directory's parent.
 std::string defaultScenePath();
 

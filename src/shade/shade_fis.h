@@ -15,7 +15,9 @@
 // Visibility (issue 16, visMode != kFisVisNone): each sample's weight times the pixel's SH visibility
 // at its direction, and the diffuse term from the lighting-visibility product (shade/visibility.h).
 //
-// Background pixels (G0.w = 0) show the atlas along the camera ray at level 0.
+// Background pixels (G0.w = 0) show the environment along the camera ray: the equirectangular map, bilinear at
+// level 0, as the other techniques do (kFisBackgroundEnvironment; issue 22: the atlas's 256^2 faces have about
+// half the map's angular resolution), or the atlas at level 0 (kFisBackgroundAtlas, "fis": {"background": "atlas"}).
 //
 // Baselines of the error study (issue 4, item 4), the same pass with a mode:
 //   kFisUnfiltered   the same deterministic samples read at level 0 (no filtering: aliasing);
@@ -25,6 +27,9 @@
 const uint kFisFiltered = 0u;
 const uint kFisUnfiltered = 1u;
 const uint kFisStochastic = 2u;
+
+const uint kFisBackgroundEnvironment = 0u;
+const uint kFisBackgroundAtlas = 1u;
 
 struct FisFrame {
   Basis basis;  // world shading frame: t, b, n
@@ -42,7 +47,7 @@ FisFrame fisFrame(Float3 nIn, Float3 tIn, Float3 v) {
   return FisFrame(B, basisToLocal(B, v));
 }
 
-Float4 shadeFis(Sampler2D atlas, uint mode, Float maxLod, Float log2KwhOverN, Float levelBias, uint sampleCount,
+Float4 shadeFis(Sampler2D atlas, Sampler2D env, uint background, uint mode, Float maxLod, Float log2KwhOverN, Float levelBias, uint sampleCount,
                 Float intensity, ShRgb sh, Uint pixel, Float4 g0, Float4 g1, Float4 g2, Float3 eye, Float3 ray, Float3 diffuse, Float3 specular,
                 BrdfParams brdf, uint visMode, Sh16 vis, VisLighting visLight) {
   Mask geometry = g0.w != 0.0f;
@@ -72,7 +77,9 @@ Float4 shadeFis(Sampler2D atlas, uint mode, Float maxLod, Float log2KwhOverN, Fl
   Float3 irr = shIrradiance(sh, F.basis.n);
   if (visMode != kFisVisNone) irr = visIrradiance(visMode, visLight, vis, irr, F.basis.n);
   PRECISE Float3 c = sum * invN * specular + irr * diffuse;
-  Float4 bg = textureLod(atlas, paraboloidUv(ray), 0.0f);
+  Float4 bg = Float4(0.0f, 0.0f, 0.0f, 0.0f);
+  if (background == kFisBackgroundAtlas) bg = textureLod(atlas, paraboloidUv(ray), 0.0f);
+  else bg = textureLod(env, equirectUv(ray), 0.0f);
   c = select(geometry, c, Float3(bg.x, bg.y, bg.z));
   c = c * intensity;
   return Float4(c.x, c.y, c.z, 1.0f);

@@ -12,6 +12,7 @@ layout(std430, set = 0, binding = 1) readonly buffer Gbuf { GbufFis gbuf[]; };
 struct MaterialGpu { vec4 diffuse; vec4 specular; vec4 brdf; uvec4 kind; vec4 lobe0; vec4 lobe1; vec4 rho; uvec4 maps; };  // inputs/material.h
 layout(std430, set = 0, binding = 2) readonly buffer Materials { MaterialGpu materials[]; };
 layout(set = 0, binding = 5) uniform sampler2DArray maps;  // inputs/material.h
+layout(set = 0, binding = 6) uniform sampler2D env;  // the equirectangular map: the background (kFisBackgroundEnvironment)
 layout(std430, set = 0, binding = 3) writeonly buffer Out { vec4 color[]; };
 // E/pi coefficients (0-8, inputs/sh_irradiance.cpp); with visibility also the raw lighting SH (9-20:
 // r, g, b, 4 vec4 each, inputs/visibility.h) and each pixel's 16 fit coefficients (21 + 4 p ...).
@@ -21,6 +22,7 @@ layout(push_constant) uniform Push {
   float invW, invH, maxLod, intensity;
   uint width, count, materialCount, sampleCount;
   float levelConstant, levelBias; uint mode, visMode;
+  uint background;
 } pc;
 
 void main() {
@@ -39,7 +41,7 @@ void main() {
     vis = Sh16(sh[o], sh[o + 1u], sh[o + 2u], sh[o + 3u]);
     vl = VisLighting(Sh16(sh[9], sh[10], sh[11], sh[12]), Sh16(sh[13], sh[14], sh[15], sh[16]), Sh16(sh[17], sh[18], sh[19], sh[20]));
   }
-  vec4 c = shadeFis(atlas, pc.mode, pc.maxLod, pc.levelConstant, pc.levelBias, pc.sampleCount, pc.intensity, e, p, g.g0, g.g1, g.g2,
+  vec4 c = shadeFis(atlas, env, pc.background, pc.mode, pc.maxLod, pc.levelConstant, pc.levelBias, pc.sampleCount, pc.intensity, e, p, g.g0, g.g1, g.g2,
                     pc.eye.xyz, ray, m.diffuse, m.specular, m.brdf, pc.visMode, vis, vl);
   if (i < pc.count) color[i] = c;
 }

@@ -6,9 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene.h"
+
 namespace shadetwin {
 
-struct VerifyOptions {
+struct VerifyOptions : SceneOverrides {  // the shared scene options of the suites that take a scene
   size_t count = 100000;
   uint64_t seed = 1;
   std::string device;     // Vulkan device name substring; empty = lavapipe
@@ -21,10 +23,8 @@ struct VerifyOptions {
   std::vector<std::string> profileSet;  // every suite but math (raster and the pass suites too): KEY=VALUE overrides of the device profile (emu::setProfileField)
   std::string image;          // texture: sample this image file (MIP chain from the shared kernel) instead of random textures
   std::string scene;          // raster/shadow/shade/frame: scene file
-  uint32_t width = 0, height = 0;  // raster/shade/frame: override the scene's image size
   uint32_t directions = 16;   // shadow: number of directions (spherical Fibonacci)
   uint32_t shadowSize = 512;  // shadow: map resolution
-  std::string technique;      // shade/frame: shading technique (default: the scene's)
   uint32_t faceSize = 256;    // paraboloid: face size S of the 2S x S atlas
   bool visibilityV = false;   // visibility: fit V alone (default V max(0, n . w))
   std::string mapKind = "flakes";  // ndf: generated normal map kind

@@ -30,12 +30,7 @@ struct Setup {
 
 Setup setUp(const VerifyOptions& opts, std::ostream& out) {
   Setup s;
-  s.scene = loadScene(opts.scene);
-  if (opts.width) s.scene.width = opts.width;
-  if (opts.height) s.scene.height = opts.height;
-  if (!opts.technique.empty()) s.scene.technique = opts.technique;
-  if (!isTechnique(s.scene.technique))
-    throw std::invalid_argument("--technique " + s.scene.technique + ": expected fis, unfiltered, stochastic, env or mirror");
+  s.scene = loadScene(opts.scene, opts);  // the shared scene options (an unknown --technique is refused there)
   vk::ContextOptions co;
   co.device = opts.device;
   co.validation = opts.validate;

@@ -37,9 +37,7 @@ std::array<size_t, 2> printTallies(const std::vector<UlpTally>& t, std::ostream&
 }
 
 int verifyRaster(const VerifyOptions& opts, std::ostream& out) {
-  Scene scene = loadScene(opts.scene);
-  if (opts.width) scene.width = opts.width;
-  if (opts.height) scene.height = opts.height;
+  Scene scene = loadScene(opts.scene, opts);
   vk::ContextOptions co;
   co.device = opts.device;
   co.validation = opts.validate;
