@@ -70,6 +70,9 @@ int main(int argc, char** argv) {
     sub->add_option("--seed", vo.seed, "random seed");
     sub->add_option("--device", vo.device, "Vulkan device (substring of its name; default lavapipe)");
     sub->add_flag("--validate", vo.validate, "enable Vulkan validation layers; any error fails the run");
+    sub->add_option("--junit", vo.junit, "write the result as JUnit XML: a test case per stage and channel group, failures with "
+                                         "the identical count and the first difference");
+    sub->add_option("--json", vo.json, "write the same result as JSON (tests/verify_report.schema.json)");
     const std::string w = what;
     if (w == "raster" || w == "shadow" || w == "shade" || w == "frame" || w == "paraboloid" || w == "sh" ||
         w == "visibility" || w == "glint-lighting") {
@@ -220,6 +223,8 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("reference")) return shadetwin::referenceCommand(refo, std::cout);
     if (app.got_subcommand("compare")) return shadetwin::compareCommand(cmpA, cmpB, std::cout);
+    for (const std::string* report : {&vo.junit, &vo.json})  // before the work: a missing folder costs nothing
+      if (!report->empty()) shadetwin::checkWritable(*report);
     if (verify->got_subcommand("math")) return shadetwin::verifyMath(vo, std::cout);
     if (verify->got_subcommand("texture")) return shadetwin::verifyTexture(vo, std::cout);
     if (verify->got_subcommand("raster")) return shadetwin::verifyRaster(vo, std::cout);

@@ -22,6 +22,7 @@ struct VerifyOptions : SceneOverrides {  // the shared scene options of the suit
   uint64_t seeds = 1;         // texture: run the seeds seed .. seed + seeds - 1
   std::vector<std::string> profileSet;  // every suite but math (raster and the pass suites too): KEY=VALUE overrides of the device profile (emu::setProfileField)
   std::string image;          // texture: sample this image file (MIP chain from the shared kernel) instead of random textures
+  std::string junit, json;    // every suite: --junit FILE (JUnit XML), --json FILE (the same as data)
   std::string scene;          // raster/shadow/shade/frame: scene file
   uint32_t directions = 16;   // shadow: number of directions (spherical Fibonacci)
   uint32_t shadowSize = 512;  // shadow: map resolution
@@ -66,8 +67,25 @@ struct UlpTally {
   std::string name;
   size_t identical = 0, total = 0;
   std::array<size_t, 5> hist{};  // ULP 1, 2-3, 4-15, 16-255, >= 256 (or NaN vs number)
+  int64_t firstDiff = -1;        // the first differing element's index (-1: none)
+  float firstA = 0, firstB = 0;  // ... its two values, emulator and device
+  uint32_t firstBitsA = 0, firstBitsB = 0;
   void add(float a, float b);
+  /// A comparison that is not of floats (coverage): counts a difference at the current element.
+  void addSame(bool same);
 };
+
+/// What --junit / --json write: one case per tally (stage and channel group) plus the validation layers.
+struct VerifyReport {
+  std::string suite, device, scene;
+  uint32_t width = 0;  // pixels per row when the tallies' elements are pixels (first difference as (x, y)), else 0
+  std::vector<UlpTally> cases;
+  uint32_t validationErrors = 0;
+  std::string lastValidationMessage;
+};
+/// Writes opts.junit (JUnit XML, tests/junit.xsd) and opts.json (tests/verify_report.schema.json) when set, each
+/// through an OutputFile (a temporary renamed when complete).
+void writeVerifyReports(const VerifyOptions& opts, const VerifyReport& r);
 /// Prints one row per tally and returns {identical, total} summed over all of them.
 std::array<size_t, 2> printTallies(const std::vector<UlpTally>& t, std::ostream& out);
 

@@ -100,6 +100,7 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
   uint64_t stageSame[2][2] = {{0, 0}, {0, 0}};  // [compute, fragment][preserve, flush]: each stage against either C++ mode
   const size_t nEdge = sizeof(kEdge) / sizeof(kEdge[0]);
   uint64_t identical = 0, total = 0;
+  std::vector<UlpTally> tallies;  // one per function, for --junit / --json
   out << std::left << std::setw(12) << "function" << std::right << std::setw(22) << "identical/total" << std::setw(14)
       << "max ulp" << std::setw(12) << "NaN vs num"
       << std::setw(22) << "compute P / F" << std::setw(22) << "fragment P / F"
@@ -127,6 +128,7 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
     frag.run(binds, &push, uint32_t(n), 1024);
     std::memcpy(gpuFrag.data(), outBuf.data(), n * 12);
     uint64_t same = 0, nanDiff = 0, st[2][2] = {{0, 0}, {0, 0}};
+    UlpTally tally{mathKernelName(fn)};
     int64_t maxUlp = 0;
     for (size_t i = 0; i < n; ++i) {
       bool ok = true, s[2][2] = {{true, true}, {true, true}};
@@ -138,6 +140,11 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
       }
       ok = ok && s[0][compFlush] && s[1][fragFlush];
       same += ok;
+      if (!ok && tally.firstDiff < 0) {  // the reports' first difference: the scalar build against the compute stage
+        tally.firstDiff = int64_t(i), tally.firstA = scalar[3 * i], tally.firstB = gpuComp[3 * i];
+        std::memcpy(&tally.firstBitsA, &scalar[3 * i], 4);
+        std::memcpy(&tally.firstBitsB, &gpuComp[3 * i], 4);
+      }
       for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b) st[a][b] += s[a][b];
       double ref = reference(fn, in[3 * i], in[3 * i + 1], in[3 * i + 2]);
@@ -147,6 +154,8 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
     }
     identical += same;
     total += n;
+    tally.identical = same, tally.total = n;
+    tallies.push_back(tally);
     out << std::left << std::setw(12) << mathKernelName(fn) << std::right << std::setw(10) << same << "/" << std::setw(11)
         << std::left << n << std::right << std::setw(10) << maxUlp << std::setw(12) << nanDiff << std::setw(12) << st[0][0] << " / "
         << std::setw(7) << st[0][1] << std::setw(12) << st[1][0] << " / " << std::setw(7) << st[1][1] << "\n";
@@ -157,6 +166,7 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
       << stageSame[1][1] << " of " << total + 0 << " identical with denormals preserved / flushed\n";
   if (ctx.validationEnabled())
     out << "validation errors: " << ctx.validationErrors() << (ctx.validationErrors() ? " (" + ctx.lastValidationMessage + ")" : "") << "\n";
+  writeVerifyReports(opts, {"math", ctx.deviceName(), "", 0, tallies, ctx.validationErrors(), ctx.lastValidationMessage});
   out << "math: " << identical << "/" << total << " bit-identical\n";
   return (identical == total && ctx.validationErrors() == 0) ? 0 : 1;
 }

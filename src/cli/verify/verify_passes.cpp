@@ -46,8 +46,13 @@ Setup setUp(const VerifyOptions& opts, std::ostream& out) {
   return s;
 }
 
-int finish(const char* what, const std::array<size_t, 2>& it, const vk::Context& ctx, const VerifyOptions& opts,
-           std::ostream& out) {
+// The tallies' table, `note`, the --junit / --json reports, then the suite's last line (or the validation errors).
+// `width`: pixels per row when the tallies' elements are pixels (the reports give a first difference as (x, y)).
+int finish(const char* what, const std::vector<UlpTally>& t, uint32_t width, const vk::Context& ctx, const VerifyOptions& opts,
+           std::ostream& out, const std::string& note = "") {
+  const auto it = printTallies(t, out);
+  out << note;
+  writeVerifyReports(opts, {what, ctx.deviceName(), opts.scene, width, t, ctx.validationErrors(), ctx.lastValidationMessage});
   if (opts.validate && ctx.validationErrors()) {
     out << "validation errors: " << ctx.validationErrors() << " (last: " << ctx.lastValidationMessage << ")\n";
     return 1;
@@ -84,16 +89,15 @@ int verifyShadow(const VerifyOptions& opts, std::ostream& out) {
       const size_t before = t[0].identical;
       t[0].add(a, b);
       diff += t[0].identical == before;
-      t[1].total++;
-      t[1].identical += (a < 1.0f) == (b < 1.0f);
+      t[1].addSame((a < 1.0f) == (b < 1.0f));
     }
     if (diff > worstDiff) worst = d, worstDiff = diff;
   }
-  const auto it = printTallies(t, out);
+  std::ostringstream note;
   if (worstDiff)
-    out << "most differences in direction " << worst << " (" << dirs[worst][0] << ", " << dirs[worst][1] << ", "
-        << dirs[worst][2] << "): " << worstDiff << " depth values\n";
-  return finish("shadow", it, *s.ctx, opts, out);
+    note << "most differences in direction " << worst << " (" << dirs[worst][0] << ", " << dirs[worst][1] << ", "
+         << dirs[worst][2] << "): " << worstDiff << " depth values\n";
+  return finish("shadow", t, 0, *s.ctx, opts, out, note.str());
 }
 
 int verifyShade(const VerifyOptions& opts, std::ostream& out) {
@@ -112,7 +116,7 @@ int verifyShade(const VerifyOptions& opts, std::ostream& out) {
   std::vector<float> v = pass.run(g, vis.get());
   out << "technique " << s.scene.technique << (vis ? " with SH visibility" : "")
       << ", shading the Vulkan build's G-buffer in both builds\n";
-  return finish("shade", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
+  return finish("shade", compareRgba(e, v), g.width, *s.ctx, opts, out);
 }
 
 int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
@@ -135,7 +139,7 @@ int verifyFrame(const VerifyOptions& opts, std::ostream& out) {
   std::vector<float> v = pass.run(gV, visV.get());
   out << "technique " << s.scene.technique << (visE ? " with SH visibility (each build: shadow maps + fit)" : "")
       << ", whole frames (G-buffer + shading) of each build\n";
-  return finish("frame", printTallies(compareRgba(e, v), out), *s.ctx, opts, out);
+  return finish("frame", compareRgba(e, v), gE.width, *s.ctx, opts, out);
 }
 
 int verifyParaboloid(const VerifyOptions& opts, std::ostream& out) {
@@ -154,7 +158,7 @@ int verifyParaboloid(const VerifyOptions& opts, std::ostream& out) {
   for (size_t l = 1; l < ce.size(); ++l)
     for (size_t i = 0; i < ce[l].size(); ++i) mips.add(ce[l][i], cv[l][i]);
   t.push_back(mips);
-  return finish("paraboloid", printTallies(t, out), *s.ctx, opts, out);
+  return finish("paraboloid", t, 2 * S, *s.ctx, opts, out);
 }
 
 int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out) {
@@ -169,7 +173,7 @@ int verifyShIrradiance(const VerifyOptions& opts, std::ostream& out) {
   for (size_t i = 0; i < e.band3.size(); ++i) t3.add(e.band3[i], v.band3[i]);
   out << "E/pi(+y) = " << shIrradianceAt(e, {0, 1, 0})[1] << ", E/pi(-y) = " << shIrradianceAt(e, {0, -1, 0})[1]
       << " (green)\n";
-  return finish("sh", printTallies({t, t3}, out), *s.ctx, opts, out);
+  return finish("sh", {t, t3}, 0, *s.ctx, opts, out);
 }
 
 int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
@@ -208,7 +212,7 @@ int verifyVisibility(const VerifyOptions& opts, std::ostream& out) {
   out << "filter: radius " << vf.settings.filterRadius << ", " << (vf.settings.filterEdgeAware ? "edge-aware" : "box") << "\n";
   for (int c = 0; c < 16; ++c) t.push_back({"filtered c" + std::to_string(c)});
   for (size_t i = 0; i < fe.coeffs.size(); ++i) t[16 + i % 16].add(fe.coeffs[i], fk.coeffs[i]);
-  return finish("visibility", printTallies(t, out), *s.ctx, opts, out);
+  return finish("visibility", t, g.width, *s.ctx, opts, out);
 }
 
 int verifyGlintLighting(const VerifyOptions& opts, std::ostream& out) {
@@ -228,7 +232,7 @@ int verifyGlintLighting(const VerifyOptions& opts, std::ostream& out) {
       << " views, degree " << spec.order << " (" << e.coeffs << " RGB coefficients each, " << e.bytes() / (1 << 20)
       << " MiB; bands of " << (spec.bandRows ? spec.bandRows : env.texture->levelHeight(spec.level)) << " rows); build emu " << e.buildMs << " ms, vulkan " << v.buildMs << " ms\n";
   const std::vector<UlpTally> t = compareRgba(e.rgba, v.rgba);
-  return finish("glint-lighting", printTallies(t, out), *s.ctx, opts, out);
+  return finish("glint-lighting", t, 0, *s.ctx, opts, out);
 }
 
 }  // namespace shadetwin

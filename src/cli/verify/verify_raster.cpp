@@ -17,8 +17,19 @@ void UlpTally::add(float a, float b) {
     ++identical;
     return;
   }
+  if (firstDiff < 0) {
+    firstDiff = int64_t(total - 1), firstA = a, firstB = b;
+    std::memcpy(&firstBitsA, &a, 4);
+    std::memcpy(&firstBitsB, &b, 4);
+  }
   int64_t u = ulpDistance(a, b);
   hist[u <= 1 ? 0 : u <= 3 ? 1 : u <= 15 ? 2 : u <= 255 ? 3 : 4]++;
+}
+
+void UlpTally::addSame(bool same) {
+  ++total;
+  if (same) ++identical;
+  else if (firstDiff < 0) firstDiff = int64_t(total - 1);
 }
 
 std::array<size_t, 2> printTallies(const std::vector<UlpTally>& t, std::ostream& out) {
@@ -66,12 +77,13 @@ int verifyRaster(const VerifyOptions& opts, std::ostream& out) {
   const size_t n = size_t(scene.width) * scene.height;
   for (size_t p = 0; p < n; ++p) {
     const bool ce = e.texels[p * kGbufFloats + 3] != 0.0f, cg = g.texels[p * kGbufFloats + 3] != 0.0f;
-    t[0].total++;
-    t[0].identical += ce == cg;
+    t[0].addSame(ce == cg);
     t[1].add(e.depth[p], g.depth[p]);
     for (int k = 0; k < kGbufFloats; ++k) t[size_t(2 + k)].add(e.texels[p * kGbufFloats + size_t(k)], g.texels[p * kGbufFloats + size_t(k)]);
   }
   const auto [I, T] = printTallies(t, out);
+  writeVerifyReports(opts, {"raster", ctx.deviceName(), opts.scene, scene.width, t, uint32_t(ctx.validationErrors()),
+                            ctx.lastValidationMessage});
   if (opts.validate && ctx.validationErrors()) {
     out << "validation errors: " << ctx.validationErrors() << " (last: " << ctx.lastValidationMessage << ")\n";
     return 1;

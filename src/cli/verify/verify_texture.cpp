@@ -390,6 +390,9 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
   if (ctx.validationEnabled())
     out << "validation errors: " << ctx.validationErrors()
         << (ctx.validationErrors() ? " (" + ctx.lastValidationMessage + ")" : "") << "\n";
+  UlpTally all{"lookups (every format x filter x address mode x stage)"};
+  all.identical = identical, all.total = total;
+  writeVerifyReports(opts, {"texture", ctx.deviceName(), opts.image, 0, {all}, ctx.validationErrors(), ctx.lastValidationMessage});
   out << "texture: " << identical << "/" << total << " bit-identical\n";
   return (identical == total && ctx.validationErrors() == 0) ? 0 : 1;
 }
