@@ -69,8 +69,9 @@ struct UlpTally {
   std::array<size_t, 5> hist{};  // ULP 1, 2-3, 4-15, 16-255, >= 256 (or NaN vs number)
   int64_t firstDiff = -1;        // the first differing element's index (-1: none)
   float firstA = 0, firstB = 0;  // ... its two values, emulator and device
-  uint32_t firstBitsA = 0, firstBitsB = 0;
   void add(float a, float b);
+  /// Records element `i` (values a, b) as the first difference unless one is recorded.
+  void noteDifference(int64_t i, float a, float b);
   /// A comparison that is not of floats (coverage): counts a difference at the current element.
   void addSame(bool same);
 };

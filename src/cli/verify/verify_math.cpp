@@ -140,11 +140,7 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
       }
       ok = ok && s[0][compFlush] && s[1][fragFlush];
       same += ok;
-      if (!ok && tally.firstDiff < 0) {  // the reports' first difference: the scalar build against the compute stage
-        tally.firstDiff = int64_t(i), tally.firstA = scalar[3 * i], tally.firstB = gpuComp[3 * i];
-        std::memcpy(&tally.firstBitsA, &scalar[3 * i], 4);
-        std::memcpy(&tally.firstBitsB, &gpuComp[3 * i], 4);
-      }
+      if (!ok) tally.noteDifference(int64_t(i), scalar[3 * i], gpuComp[3 * i]);  // the reports': scalar vs compute
       for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b) st[a][b] += s[a][b];
       double ref = reference(fn, in[3 * i], in[3 * i + 1], in[3 * i + 2]);

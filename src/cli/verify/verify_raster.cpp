@@ -17,13 +17,13 @@ void UlpTally::add(float a, float b) {
     ++identical;
     return;
   }
-  if (firstDiff < 0) {
-    firstDiff = int64_t(total - 1), firstA = a, firstB = b;
-    std::memcpy(&firstBitsA, &a, 4);
-    std::memcpy(&firstBitsB, &b, 4);
-  }
+  noteDifference(int64_t(total - 1), a, b);
   int64_t u = ulpDistance(a, b);
   hist[u <= 1 ? 0 : u <= 3 ? 1 : u <= 15 ? 2 : u <= 255 ? 3 : 4]++;
+}
+
+void UlpTally::noteDifference(int64_t i, float a, float b) {
+  if (firstDiff < 0) firstDiff = i, firstA = a, firstB = b;
 }
 
 void UlpTally::addSame(bool same) {

@@ -1,5 +1,6 @@
 // verify --junit / --json: a suite's comparison as JUnit XML (what CI systems read: Jenkins, GitLab, GitHub actions'
 // test reporters) and as JSON (tests/verify_report.schema.json), one test case per stage and channel group.
+#include <bit>
 #include <iomanip>
 #include <sstream>
 
@@ -106,7 +107,8 @@ void writeVerifyReports(const VerifyOptions& opts, const VerifyReport& r) {
       } else {
         o << "{\"index\": " << t.firstDiff;
         if (r.width) o << ", \"x\": " << uint64_t(t.firstDiff) % r.width << ", \"y\": " << uint64_t(t.firstDiff) / r.width;
-        o << ", \"emulator_bits\": " << t.firstBitsA << ", \"device_bits\": " << t.firstBitsB << "}}";
+        o << ", \"emulator_bits\": " << std::bit_cast<uint32_t>(t.firstA) << ", \"device_bits\": " << std::bit_cast<uint32_t>(t.firstB)
+          << "}}";
       }
     }
     o << "\n  ]\n}\n";
