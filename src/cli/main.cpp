@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
     sub->add_option("--junit", vo.junit, "write the result as JUnit XML: a test case per stage and channel group, failures with "
                                          "the identical count and the first difference");
     sub->add_option("--json", vo.json, "write the same result as JSON (tests/verify_report.schema.json)");
+    sub->add_option("--heatmap", vo.heatmap, "when an image stage differs, write a PNG of where: a panel per differing "
+                                             "channel, the ULP distance on a log scale, with a legend");
     const std::string w = what;
     if (w == "raster" || w == "shadow" || w == "shade" || w == "frame" || w == "paraboloid" || w == "sh" ||
         w == "visibility" || w == "glint-lighting") {
@@ -223,7 +225,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("reference")) return shadetwin::referenceCommand(refo, std::cout);
     if (app.got_subcommand("compare")) return shadetwin::compareCommand(cmpA, cmpB, std::cout);
-    for (const std::string* report : {&vo.junit, &vo.json})  // before the work: a missing folder costs nothing
+    for (const std::string* report : {&vo.junit, &vo.json, &vo.heatmap})  // before the work: a missing folder costs nothing
       if (!report->empty()) shadetwin::checkWritable(*report);
     if (verify->got_subcommand("math")) return shadetwin::verifyMath(vo, std::cout);
     if (verify->got_subcommand("texture")) return shadetwin::verifyTexture(vo, std::cout);

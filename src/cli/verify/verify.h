@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/scene.h"
@@ -23,6 +24,7 @@ struct VerifyOptions : SceneOverrides {  // the shared scene options of the suit
   std::vector<std::string> profileSet;  // every suite but math (raster and the pass suites too): KEY=VALUE overrides of the device profile (emu::setProfileField)
   std::string image;          // texture: sample this image file (MIP chain from the shared kernel) instead of random textures
   std::string junit, json;    // every suite: --junit FILE (JUnit XML), --json FILE (the same as data)
+  std::string heatmap;        // image suites: --heatmap FILE.png, a ULP heat map of every differing channel
   std::string scene;          // raster/shadow/shade/frame: scene file
   uint32_t directions = 16;   // shadow: number of directions (spherical Fibonacci)
   uint32_t shadowSize = 512;  // shadow: map resolution
@@ -69,6 +71,11 @@ struct UlpTally {
   std::array<size_t, 5> hist{};  // ULP 1, 2-3, 4-15, 16-255, >= 256 (or NaN vs number)
   int64_t firstDiff = -1;        // the first differing element's index (-1: none)
   float firstA = 0, firstB = 0;  // ... its two values, emulator and device
+  /// Every difference as (element, ULP distance; kHeatNotANumber for NaN vs a number or a comparison not of floats),
+  /// for the heat map (--heatmap); at most kMaxDiffs, `diffsTruncated` past them.
+  std::vector<std::pair<uint32_t, uint32_t>> diffs;
+  bool diffsTruncated = false;
+  static constexpr size_t kMaxDiffs = size_t(1) << 24;
   void add(float a, float b);
   /// Records element `i` (values a, b) as the first difference unless one is recorded.
   void noteDifference(int64_t i, float a, float b);
@@ -85,8 +92,9 @@ struct VerifyReport {
   std::string lastValidationMessage;
 };
 /// Writes opts.junit (JUnit XML, tests/junit.xsd) and opts.json (tests/verify_report.schema.json) when set, each
-/// through an OutputFile (a temporary renamed when complete).
-void writeVerifyReports(const VerifyOptions& opts, const VerifyReport& r);
+/// through an OutputFile (a temporary renamed when complete), and opts.heatmap (util/heatmap.h) when a case of an image
+/// comparison (width > 0) differs; says on `out` what it wrote or why no heat map.
+void writeVerifyReports(const VerifyOptions& opts, const VerifyReport& r, std::ostream& out);
 /// Prints one row per tally and returns {identical, total} summed over all of them.
 std::array<size_t, 2> printTallies(const std::vector<UlpTally>& t, std::ostream& out);
 

@@ -102,7 +102,7 @@ int verifyNdf(const VerifyOptions& opts, std::ostream& out) {
   const bool ok = emuSame == values && gpuSame == values && ctx.validationErrors() == 0;
   UlpTally emuCase{"emulator (8 lanes) = host"}, gpuCase{"vulkan = host"};
   emuCase.identical = emuSame, emuCase.total = values, gpuCase.identical = gpuSame, gpuCase.total = values;
-  writeVerifyReports(opts, {"ndf", ctx.deviceName(), "", 0, {emuCase, gpuCase}, ctx.validationErrors(), ctx.lastValidationMessage});
+  writeVerifyReports(opts, {"ndf", ctx.deviceName(), "", 0, {emuCase, gpuCase}, ctx.validationErrors(), ctx.lastValidationMessage}, out);
   out << "ndf: " << (ok ? values : std::min(emuSame, gpuSame)) << "/" << values << (ok ? " bit-identical\n" : " differ\n");
   return ok ? 0 : 1;
 }

@@ -162,7 +162,7 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
       << stageSame[1][1] << " of " << total + 0 << " identical with denormals preserved / flushed\n";
   if (ctx.validationEnabled())
     out << "validation errors: " << ctx.validationErrors() << (ctx.validationErrors() ? " (" + ctx.lastValidationMessage + ")" : "") << "\n";
-  writeVerifyReports(opts, {"math", ctx.deviceName(), "", 0, tallies, ctx.validationErrors(), ctx.lastValidationMessage});
+  writeVerifyReports(opts, {"math", ctx.deviceName(), "", 0, tallies, ctx.validationErrors(), ctx.lastValidationMessage}, out);
   out << "math: " << identical << "/" << total << " bit-identical\n";
   return (identical == total && ctx.validationErrors() == 0) ? 0 : 1;
 }

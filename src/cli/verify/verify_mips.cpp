@@ -49,7 +49,7 @@ int verifyMips(const VerifyOptions& opts, std::ostream& out) {
   if (ctx.validationEnabled()) out << "validation errors: " << ctx.validationErrors() << "\n";
   UlpTally all{"mip levels 1.. (scalar = simd x8 = device)"};
   all.identical = identical, all.total = total;
-  writeVerifyReports(opts, {"mips", ctx.deviceName(), "", 0, {all}, ctx.validationErrors(), ctx.lastValidationMessage});
+  writeVerifyReports(opts, {"mips", ctx.deviceName(), "", 0, {all}, ctx.validationErrors(), ctx.lastValidationMessage}, out);
   out << "mips: " << identical << "/" << total << " bit-identical\n";
   return (identical == total && ctx.validationErrors() == 0) ? 0 : 1;
 }

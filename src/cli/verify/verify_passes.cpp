@@ -52,7 +52,7 @@ int finish(const char* what, const std::vector<UlpTally>& t, uint32_t width, con
            std::ostream& out, const std::string& note = "") {
   const auto it = printTallies(t, out);
   out << note;
-  writeVerifyReports(opts, {what, ctx.deviceName(), opts.scene, width, t, ctx.validationErrors(), ctx.lastValidationMessage});
+  writeVerifyReports(opts, {what, ctx.deviceName(), opts.scene, width, t, ctx.validationErrors(), ctx.lastValidationMessage}, out);
   if (opts.validate && ctx.validationErrors()) {
     out << "validation errors: " << ctx.validationErrors() << " (last: " << ctx.lastValidationMessage << ")\n";
     return 1;

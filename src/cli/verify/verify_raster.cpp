@@ -2,7 +2,10 @@
 // and on the Vulkan build; coverage, depth and every G-buffer channel compared bit for bit.
 #include <array>
 #include <cstring>
+#include <cmath>
 #include <iomanip>
+
+#include "util/heatmap.h"
 
 #include "emu/device_profile.h"
 #include "passes/passes_vk.h"
@@ -20,6 +23,9 @@ void UlpTally::add(float a, float b) {
   noteDifference(int64_t(total - 1), a, b);
   int64_t u = ulpDistance(a, b);
   hist[u <= 1 ? 0 : u <= 3 ? 1 : u <= 15 ? 2 : u <= 255 ? 3 : 4]++;
+  if (diffs.size() < kMaxDiffs)
+    diffs.push_back({uint32_t(total - 1), (std::isnan(a) != std::isnan(b) || u >= int64_t(kHeatNotANumber)) ? kHeatNotANumber : uint32_t(u)});
+  else diffsTruncated = true;
 }
 
 void UlpTally::noteDifference(int64_t i, float a, float b) {
@@ -28,8 +34,13 @@ void UlpTally::noteDifference(int64_t i, float a, float b) {
 
 void UlpTally::addSame(bool same) {
   ++total;
-  if (same) ++identical;
-  else if (firstDiff < 0) firstDiff = int64_t(total - 1);
+  if (same) {
+    ++identical;
+    return;
+  }
+  if (firstDiff < 0) firstDiff = int64_t(total - 1);
+  if (diffs.size() < kMaxDiffs) diffs.push_back({uint32_t(total - 1), kHeatNotANumber});
+  else diffsTruncated = true;
 }
 
 std::array<size_t, 2> printTallies(const std::vector<UlpTally>& t, std::ostream& out) {
@@ -83,7 +94,7 @@ int verifyRaster(const VerifyOptions& opts, std::ostream& out) {
   }
   const auto [I, T] = printTallies(t, out);
   writeVerifyReports(opts, {"raster", ctx.deviceName(), opts.scene, scene.width, t, uint32_t(ctx.validationErrors()),
-                            ctx.lastValidationMessage});
+                            ctx.lastValidationMessage}, out);
   if (opts.validate && ctx.validationErrors()) {
     out << "validation errors: " << ctx.validationErrors() << " (last: " << ctx.lastValidationMessage << ")\n";
     return 1;

@@ -2,9 +2,11 @@
 // test reporters) and as JSON (tests/verify_report.schema.json), one test case per stage and channel group.
 #include <bit>
 #include <iomanip>
+#include <ostream>
 #include <sstream>
 
 #include "cli/verify/verify.h"
+#include "util/heatmap.h"
 #include "util/output_file.h"
 
 namespace shadetwin {
@@ -51,9 +53,38 @@ std::string failureMessage(const UlpTally& t, uint32_t width) {
   return m.str();
 }
 
+// --heatmap: a panel per differing case of an image comparison, its elements laid out `width` a row.
+void writeHeatMap(const VerifyOptions& opts, const VerifyReport& r, std::ostream& out) {
+  if (!r.width) {
+    out << "heat map: not written (verify " << r.suite << " compares no image: its elements are not pixels)\n";
+    return;
+  }
+  std::vector<HeatPanel> panels;
+  bool truncated = false;
+  for (const UlpTally& t : r.cases) {
+    if (t.identical == t.total) continue;
+    HeatPanel p{t.name, r.width, uint32_t((t.total + r.width - 1) / r.width), {}};
+    p.ulp.assign(size_t(p.width) * p.height, 0);
+    for (const auto& [i, u] : t.diffs) p.ulp[i] = u;
+    truncated |= t.diffsTruncated;
+    panels.push_back(std::move(p));
+  }
+  if (panels.empty()) {
+    out << "heat map: not written (nothing differs)\n";
+    return;
+  }
+  const std::string title = "verify " + r.suite + (r.scene.empty() ? "" : " " + r.scene) + " on " + r.device +
+                            ": ULP distance, emulator vs device";
+  const std::string warning = writeUlpHeatMap(opts.heatmap, title, panels);
+  out << "heat map: " << opts.heatmap << " (" << panels.size() << " differing channels"
+      << (truncated ? "; only the first 16M differences of a channel are drawn" : "") << ")\n";
+  if (!warning.empty()) out << warning << "\n";
+}
+
 }  // namespace
 
-void writeVerifyReports(const VerifyOptions& opts, const VerifyReport& r) {
+void writeVerifyReports(const VerifyOptions& opts, const VerifyReport& r, std::ostream& out) {
+  if (!opts.heatmap.empty()) writeHeatMap(opts, r, out);
   size_t failures = 0;
   for (const UlpTally& t : r.cases) failures += t.identical != t.total;
   const bool validationFailed = r.validationErrors > 0;

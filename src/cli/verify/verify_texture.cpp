@@ -392,7 +392,7 @@ int verifyTexture(const VerifyOptions& opts, std::ostream& out) {
         << (ctx.validationErrors() ? " (" + ctx.lastValidationMessage + ")" : "") << "\n";
   UlpTally all{"lookups (every format x filter x address mode x stage)"};
   all.identical = identical, all.total = total;
-  writeVerifyReports(opts, {"texture", ctx.deviceName(), opts.image, 0, {all}, ctx.validationErrors(), ctx.lastValidationMessage});
+  writeVerifyReports(opts, {"texture", ctx.deviceName(), opts.image, 0, {all}, ctx.validationErrors(), ctx.lastValidationMessage}, out);
   out << "texture: " << identical << "/" << total << " bit-identical\n";
   return (identical == total && ctx.validationErrors() == 0) ? 0 : 1;
 }
