@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 
 #include <exception>
+#include <map>
 #include <memory>
 #include <string>
 #include <iostream>
@@ -12,6 +13,7 @@
 #include "reference/reference.h"
 #include "cli/bench.h"
 #include "cli/calibrate.h"
+#include "cli/campaign.h"
 #include "cli/model_cmd.h"
 #include "cli/sweep.h"
 #include "cli/render.h"
@@ -203,6 +205,40 @@ int main(int argc, char** argv) {
                     "comma-separated SH visibility map counts K for fis (0: none), against a reference with visibility");
   sweep->add_option("--vis-rays", so.visRays,
                     "rays per pixel of the Embree order-4 SH visibility fit (the SH-order error; 0: skip)")->check(CLI::Range(0, 1 << 20));
+  shadetwin::CampaignOptions cpo;
+  auto* campaign = app.add_subcommand("campaign", "many scenes x techniques x devices x seeds as independent jobs (campaign files: "
+                                                  "README); locally or as a Slurm job array");
+  campaign->require_subcommand(1);
+  for (const char* what : {"plan", "run", "submit", "gather"}) {
+    static const std::map<std::string, std::string> help = {
+        {"plan", "expand the campaign into jobs with stable ids; print each job's command, or why the scene refuses it"},
+        {"run", "run the jobs here (in parallel; finished jobs with the same command are kept), one result file each"},
+        {"submit", "write a Slurm job array (sbatch --array) whose tasks are `campaign run --task`, and submit it"},
+        {"gather", "merge the jobs' results into <out>/campaign.csv and the self-contained <out>/report.html"}};
+    auto* sub = campaign->add_subcommand(what, help.at(what));
+    sub->add_option("file", cpo.file, "campaign file (JSON)")->required();
+    const std::string w = what;
+    if (w != "plan") sub->add_option("--out", cpo.out, "results folder (default results/<campaign name>; shared by the nodes for submit)");
+    if (w == "run" || w == "submit") {
+      sub->add_option("--retries", cpo.retries, "extra attempts of a job that fails (a difference is a result: not retried)")
+          ->check(CLI::Range(0, 100));
+      sub->add_option("--timeout", cpo.timeout, "seconds a job may take; past it the job is killed and counted failed (0: none)")
+          ->check(CLI::Range(0.0, 1e7));
+      sub->add_option("--chunk", cpo.chunk, "jobs per Slurm array task (run: with --task)")->check(CLI::Range(1, 1000000));
+    }
+    if (w == "run") {
+      sub->add_option("--jobs", cpo.jobs, "jobs at once (default: every core; each job gets --threads cores/jobs)")->check(CLI::Range(1, 4096));
+      sub->add_flag("--force", cpo.force, "run finished jobs again too");
+      sub->add_option("--task", cpo.task, "run only Slurm array task I: the jobs I*chunk ... I*chunk+chunk-1 (what submit's tasks run)")
+          ->check(CLI::Range(0, 100000000));
+    }
+    if (w == "submit") {
+      sub->add_option("--cpus-per-task", cpo.cpusPerTask, "CPUs of each array task (its jobs at once)")->check(CLI::Range(1, 4096));
+      sub->add_flag("--wait", cpo.wait, "sbatch --wait: return when every array task has finished (non-zero if one failed)");
+      sub->add_option("--sbatch-arg", cpo.sbatchArgs, "an extra sbatch argument, e.g. --sbatch-arg=--partition=render; repeatable")
+          ->allow_extra_args(false);
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -216,6 +252,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (app.got_subcommand("render")) return shadetwin::renderCommand(ro, std::cout);
+    if (app.got_subcommand("campaign")) {
+      for (const char* what : {"plan", "run", "submit", "gather"})
+        if (campaign->got_subcommand(what)) cpo.action = what;
+      return shadetwin::campaignCommand(cpo, std::cout);
+    }
     if (app.got_subcommand("sweep")) return shadetwin::sweepCommand(so, std::cout);
     if (app.got_subcommand("calibrate")) return shadetwin::calibrateCommand(co, std::cout);
     if (app.got_subcommand("model")) return shadetwin::modelCommand(mo, std::cout);

@@ -196,17 +196,25 @@ size_t Scene::triangles() const {
 
 std::string defaultScenePath() { return "scenes/bunny.json"; }
 
+std::string techniqueRefusal(const Scene& scene, const std::string& technique) {
+  for (const Material& m : scene.materials) {
+    if (isGlintsTechnique(technique) && !m.glints)
+      return scene.path + ": material '" + m.name + "' has no glints block (every material of a glints scene is a glinty conductor)";
+    if (technique == "mirror" && m.hasMaps())  // the mirror pass reads no material maps (inputs/material.cpp)
+      return scene.path + ": material '" + m.name + "' has material maps, which technique mirror does not read (fis, "
+             "unfiltered, stochastic and env do)";
+  }
+  return "";
+}
+
 void setTechnique(Scene& scene, const std::string& technique) {
   if (!isTechnique(technique)) {
     std::string known;
     for (const char* k : kTechniques) known += (known.empty() ? "" : ", ") + std::string(k);
     throw std::invalid_argument("--technique: unknown technique '" + technique + "' (expected one of " + known + ")");
   }
-  if (isGlintsTechnique(technique))
-    for (const Material& m : scene.materials)
-      if (!m.glints)
-        throw std::invalid_argument("--technique " + technique + ": " + scene.path + ": material '" + m.name +
-                                    "' has no glints block (every material of a glints scene is a glinty conductor)");
+  const std::string refusal = techniqueRefusal(scene, technique);
+  if (!refusal.empty()) throw std::invalid_argument("--technique " + technique + ": " + refusal);
   scene.technique = technique;
 }
 
@@ -477,6 +485,7 @@ Scene loadScene(const std::string& path) {
                         mul(scale(R.number(o, key + ".scale", 1, 1e-6f, 1e6f)), fitM)));
     s.objects.push_back(obj);
   }
+  if (const std::string refusal = techniqueRefusal(s, s.technique); !refusal.empty()) R.fail("technique", refusal);
   return s;
 }
 

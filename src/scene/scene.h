@@ -157,6 +157,9 @@ Scene loadScene(const std::string& path);
 /// technique (listing the known ones) or a glints technique on a scene with a material lacking a glints
 /// block (naming the scene file and the material).
 void setTechnique(Scene& scene, const std::string& technique);
+/// Why `scene` cannot be shaded with `technique` ("" when it can): a glints technique on a material without a glints
+/// block, mirror on material maps. The reason names the scene file and the material.
+std::string techniqueRefusal(const Scene& scene, const std::string& technique);
 
 /// What a command line may change of a scene: the same options on every command that renders a frame
 /// (src/cli/main.cpp addSceneOptions defines them once). 0 or empty keeps the scene's value.

@@ -118,7 +118,9 @@ Context::Context(const ContextOptions& opts) {
   vkEnumeratePhysicalDevices(instance_, &n, nullptr);
   std::vector<VkPhysicalDevice> devs(n);
   vkEnumeratePhysicalDevices(instance_, &n, devs.data());
+  // Mesa's lavapipe names its device llvmpipe: "lavapipe" (the project's name for it, as in devices/lavapipe.json) is that.
   std::string want = lower(opts.device.empty() ? "llvmpipe" : opts.device);
+  if (want == "lavapipe") want = "llvmpipe";
   std::string names;
   for (auto d : devs) {
     VkPhysicalDeviceProperties p;
