@@ -19,7 +19,8 @@ pkgs=(build-essential cmake ninja-build pkg-config fonts-dejavu-core
       libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslc spirv-tools
       libcli11-dev nlohmann-json3-dev libtinygltf-dev libeigen3-dev brotli
       clang libclang-rt-14-dev libxml2-utils python3-jsonschema
-      slurm-wlm munge)  # the fuzz build (libFuzzer, ASan/UBSan runtimes of clang 14)
+      slurm-wlm munge chromium)  # clang: the fuzz build (libFuzzer, ASan/UBSan runtimes of clang 14); slurm-wlm, munge:
+                                 # the single-node Slurm of the campaign tests; chromium: the report page's browser check
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

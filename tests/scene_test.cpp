@@ -283,3 +283,38 @@ TEST(Scene, GlintsBlocks) {
   shadetwin::setTechnique(plain, "mirror");
   EXPECT_EQ(plain.technique, "mirror");
 }
+
+// The mirror pass reads no material maps: --technique mirror on a scene with maps, and a scene file asking for mirror
+// with maps, are refused up front (naming the scene and the material), not deep in the shading pass.
+TEST(Scene, MirrorOnMaterialMapsIsRefusedNamingSceneAndMaterial) {
+  const std::string textured = std::string(SHADETWIN_SOURCE_DIR) + "/scenes/textured.json";
+  shadetwin::Scene s = shadetwin::loadScene(textured);
+  EXPECT_EQ(shadetwin::techniqueRefusal(s, "fis"), "");
+  EXPECT_EQ(shadetwin::techniqueRefusal(s, "env"), "");
+  try {
+    shadetwin::setTechnique(s, "mirror");
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--technique mirror: " + textured + ": material 'checker_plastic' has material maps"),
+              std::string::npos) << e.what();
+  }
+  EXPECT_EQ(s.technique, "fis");
+  // The same in the file itself.
+  const auto dir = std::filesystem::temp_directory_path() / "shadetwin_scene_mirror";
+  std::filesystem::create_directories(dir);
+  std::ifstream in(textured);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string fisKey = "\"technique\": \"fis\"";
+  text.replace(text.find(fisKey), fisKey.size(), "\"technique\": \"mirror\"");
+  const std::string root = std::string(SHADETWIN_SOURCE_DIR);
+  for (size_t at; (at = text.find("\"../assets/")) != std::string::npos;) text.replace(at, 11, "\"" + root + "/assets/");
+  const std::string p = (dir / "mirror_maps.json").string();
+  std::ofstream(p) << text;
+  try {
+    shadetwin::loadScene(p);
+    ADD_FAILURE() << "no error";
+  } catch (const shadetwin::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(p + ": technique: " + p + ": material 'checker_plastic' has material maps"), std::string::npos)
+        << e.what();
+  }
+}

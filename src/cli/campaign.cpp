@@ -214,6 +214,7 @@ std::vector<std::string> CampaignJob::command(const std::string& dir) const {
     technique_();
     size_();
     if (!device.empty()) c.insert(c.end(), {"--device", device});
+    c.insert(c.end(), {"--devices", devicesDir});
     c.insert(c.end(), args.begin(), args.end());
   }
   return c;
@@ -232,7 +233,7 @@ Campaign loadCampaign(const std::string& path) {
   } catch (const json::parse_error& e) {
     throw CampaignError(path + ": not valid JSON: " + e.what());
   }
-  R.keys(j, "", {"name", "description", "axes", "jobs"});
+  R.keys(j, "", {"name", "description", "axes", "jobs", "devices_folder"});
   Campaign c;
   c.file = path;
   if (!j.contains("name")) R.fail("name", "missing (expected a name of letters, digits, '_' and '-')");
@@ -240,6 +241,8 @@ Campaign loadCampaign(const std::string& path) {
   if (!isName(c.name)) R.fail("name", "expected at most 64 letters, digits, '_' and '-', got \"" + c.name + "\"");
   if (j.contains("description")) c.description = R.str(j["description"], "description", "description");
   const fs::path dir = fs::absolute(fs::path(path)).parent_path();
+  const std::string devicesDir =
+      (dir / (j.contains("devices_folder") ? R.str(j["devices_folder"], "", "devices_folder") : std::string("../devices"))).lexically_normal().string();
   Axes base;
   base.techniques = {""}, base.samples = {0}, base.sizes = {{0, 0}}, base.devices = {"lavapipe"}, base.seeds = {1};
   if (j.contains("axes")) {
@@ -277,7 +280,8 @@ Campaign loadCampaign(const std::string& path) {
       }
       // The generated arguments are the campaign's: an argument that sets them would make two ids one run.
       static const std::set<std::string> owned = {"--scene", "--technique", "--samples", "--width", "--height", "--device",
-                                                  "--seed", "--json", "--junit", "--heatmap", "--out", "--threads"};
+                                                  "--seed", "--json", "--junit", "--heatmap", "--out", "--threads",
+                                                  "--devices"};
       for (size_t i = 0; i < args.size(); ++i) {
         const std::string flag = args[i].substr(0, args[i].find('='));
         if (owned.count(flag))
@@ -333,6 +337,7 @@ Campaign loadCampaign(const std::string& path) {
                 job.kind = kind, job.suite = suite, job.scene = scene, job.sceneName = sceneName;
                 job.technique = technique, job.samples = samples, job.width = w, job.height = h;
                 job.device = device, job.seed = seed, job.args = args;
+                if (kind == "model") job.devicesDir = devicesDir;
                 job.techniques = sweepTechniques, job.sampleList = sweepSamples;
                 std::vector<std::string> parts = {kind + (suite.empty() ? "" : "-" + suite)};
                 if (!sceneName.empty()) parts.push_back(sceneName);

@@ -7,7 +7,11 @@
 //             "devices": ["lavapipe", "swiftshader"], "seeds": [1, 2]},
 //    "jobs": [{"kind": "verify", "suite": "frame"}, {"kind": "verify", "suite": "math", "args": ["--count", "10000"]},
 //             {"kind": "render", "techniques": ["fis"]}, {"kind": "sweep", "args": ["--no-vulkan"]},
-//             {"kind": "model", "devices": ["lavapipe"]}]}
+//             {"kind": "model", "devices": ["lavapipe"]}],
+//    "devices_folder": "../devices"}
+//
+// Paths (scenes, devices_folder: the model's device descriptions, default ../devices) are relative to the campaign file;
+// a scene entry may be a pattern in its file name (*.json).
 //
 // Every job takes the axes that apply to its kind (kindAxes below); a job may replace an axis with a key of its own.
 // plan expands the product into jobs with stable ids (kind[-suite].scene.technique.sN.WxH.device.seedK, the parts that
@@ -43,6 +47,7 @@ struct CampaignJob {
   uint32_t samples = 0, width = 0, height = 0;  // 0: the scene's
   std::string device;       // verify/sweep: Vulkan device; model: device description; "" : none
   int64_t seed = -1;        // -1: none
+  std::string devicesDir;         // model: the device descriptions' folder (absolute)
   std::vector<std::string> args;  // the job's extra arguments, after the generated ones
   std::string skipReason;         // non-empty: refused at plan time, never run
   /// The command line after the binary and its --threads: the generated arguments with the outputs in `dir`.

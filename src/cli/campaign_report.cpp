@@ -224,7 +224,14 @@ int gatherCampaign(const CampaignOptions& opts, const Campaign& c, std::ostream&
           h << "<tr class=\"" << (same ? "passed" : "differs") << "\"><td>" << html(cs.at("name").get<std::string>()) << "</td><td>"
             << cs.at("identical").dump() << "/" << cs.at("total").dump() << "</td>";
           for (const json& n : cs.at("ulp_histogram")) h << "<td>" << n.dump() << "</td>";
-          h << "<td>" << (cs.at("first_difference").is_null() ? "" : html(cs.at("first_difference").dump())) << "</td></tr>\n";
+          std::string first;
+          if (const json& d = cs.at("first_difference"); !d.is_null()) {
+            char buf[96];
+            std::snprintf(buf, sizeof buf, "emulator 0x%08llx, device 0x%08llx", (unsigned long long)d.at("emulator_bits").get<uint64_t>(),
+                          (unsigned long long)d.at("device_bits").get<uint64_t>());
+            first = (d.contains("x") ? "pixel (" + d["x"].dump() + ", " + d["y"].dump() + ")" : "element " + d.at("index").dump()) + ": " + buf;
+          }
+          h << "<td>" << html(first) << "</td></tr>\n";
         }
         h << "</table>\n";
       } catch (const json::exception& e) {

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
@@ -110,12 +111,14 @@ int runCampaign(const CampaignOptions& opts, const Campaign& c, size_t first, si
   fs::create_directories(out / "jobs", ec);
   if (ec) throw std::runtime_error(out.string() + ": cannot create the results folder: " + ec.message());
   const std::string exe = selfExe();
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  // In a Slurm task the CPUs are the task's (--cpus-per-task), not the node's.
+  unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  if (const char* slurmCpus = std::getenv("SLURM_CPUS_PER_TASK"); slurmCpus && std::atoi(slurmCpus) > 0) cores = unsigned(std::atoi(slurmCpus));
   const unsigned parallel = std::max(1u, std::min<unsigned>(opts.jobs ? opts.jobs : cores, unsigned(std::max<size_t>(1, last - first))));
   const unsigned threads = std::max(1u, cores / parallel);
   // What to do: the plan's refusals are written as skipped; finished jobs with the same command are kept.
   std::vector<size_t> todo;
-  size_t cached = 0, skipped = 0;
+  size_t cached = 0, cachedDiffers = 0, skipped = 0;
   for (size_t i = first; i < last; ++i) {
     const CampaignJob& job = c.jobs[i];
     const fs::path dir = out / "jobs" / job.id;
@@ -135,6 +138,7 @@ int runCampaign(const CampaignOptions& opts, const Campaign& c, size_t first, si
         const std::string st = old.value("status", "");
         if ((st == "passed" || st == "differs") && old.value("command", json()) == json(job.command(dir.string()))) {
           ++cached;
+          cachedDiffers += st == "differs";
           continue;
         }
       } catch (const json::exception&) {  // a damaged result: run the job again
@@ -221,8 +225,8 @@ int runCampaign(const CampaignOptions& opts, const Campaign& c, size_t first, si
   if (!todo.empty()) bar.finish();
   for (const auto& f : failures) log << "failed: " << f << "\n";
   log << "campaign " << c.name << ": " << passed << " passed, " << differs << " differ, " << failed << " failed, " << cached
-      << " already finished, " << skipped << " skipped by the plan\n";
-  return (failed || differs) ? 1 : 0;
+      << " already finished (" << cachedDiffers << " of them differ), " << skipped << " skipped by the plan\n";
+  return (failed || differs || cachedDiffers) ? 1 : 0;
 }
 
 namespace {

@@ -1,5 +1,6 @@
 // verify --junit / --json: a suite's comparison as JUnit XML (what CI systems read: Jenkins, GitLab, GitHub actions'
 // test reporters) and as JSON (tests/verify_report.schema.json), one test case per stage and channel group.
+#include <filesystem>
 #include <bit>
 #include <iomanip>
 #include <ostream>
@@ -73,7 +74,8 @@ void writeHeatMap(const VerifyOptions& opts, const VerifyReport& r, std::ostream
     out << "heat map: not written (nothing differs)\n";
     return;
   }
-  const std::string title = "verify " + r.suite + (r.scene.empty() ? "" : " " + r.scene) + " on " + r.device +
+  const std::string title = "verify " + r.suite + (r.scene.empty() ? "" : " " + std::filesystem::path(r.scene).filename().string()) +
+                            " on " + r.device +
                             ": ULP distance, emulator vs device";
   const std::string warning = writeUlpHeatMap(opts.heatmap, title, panels);
   out << "heat map: " << opts.heatmap << " (" << panels.size() << " differing channels"
