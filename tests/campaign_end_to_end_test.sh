@@ -25,6 +25,21 @@ grep -q "^plan: 14 jobs (12 to run, 2 skipped by the scene)" "$work/plan.txt" ||
 grep -q "^verify-frame.textured.mirror.24x16.lavapipe  skipped: .*textured.json: material 'checker_plastic' has material maps" \
   "$work/plan.txt" || fail "the mirror refusal is not in the plan"
 
+# The shipped example campaign (run in full locally and through Slurm: docs/RESULTS.md "Campaigns") stays valid: every
+# shipped scene x every technique x both software devices, the refusals skipped with the scene's reason.
+"$bin" campaign plan "$src/campaigns/example.json" > "$work/example_plan.txt"
+nscenes=$(ls "$src"/scenes/*.json | wc -l)
+frames=$(grep -c '^verify-frame\.' "$work/example_plan.txt")
+[ "$frames" = $((nscenes * 10 * 2)) ] || fail "example campaign: $frames verify-frame jobs for $nscenes scenes (expected x 10 techniques x 2 devices)"
+for s in "$src"/scenes/*.json; do
+  n=$(basename "$s" .json)
+  [ "$(grep -c "^verify-frame\.$n\.[a-z-]*\.48x32\.\(lavapipe\|swiftshader\) " "$work/example_plan.txt")" = 20 ] ||
+    fail "example campaign: scene $n is not planned with every technique on both devices"
+done
+grep -q "^verify-frame\.bunny\.glints\.48x32\.swiftshader  skipped: .*bunny.json" "$work/example_plan.txt" ||
+  fail "example campaign: glints on bunny (no glint materials) is not skipped with the scene's reason"
+echo "campaign: example plan: $(grep '^plan:' "$work/example_plan.txt")"
+
 # 2. Local: one job differs on purpose (rasterSetup=reactor), so run and gather exit 1.
 set +e
 "$bin" campaign run "$camp" --out "$work/local" --jobs 2 > "$work/run1.txt" 2>&1; rc1=$?
