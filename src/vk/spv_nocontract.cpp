@@ -2,12 +2,16 @@
 // driver may fuse a*b+c into an fma (the exactness contract), then writes the module as .spv and as
 // a C++ include with the words. glslang's `precise` propagation covers only values that flow into a
 // precise variable; this pass makes the guarantee independent of how shaders are written.
-//   spv_nocontract IN.spv OUT.spv OUT.inc SYMBOL
+// With --require-marked (after spirv-opt, CMakeLists.txt) it fails instead of marking: an unmarked float
+// op there would be one the optimiser made or was free to fold, so its bits would not be checked ones.
+//   spv_nocontract [--require-marked] IN.spv OUT.spv OUT.inc SYMBOL
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace {
@@ -24,7 +28,9 @@ bool isFloatArith(uint32_t op) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 5) { std::fprintf(stderr, "usage: spv_nocontract IN.spv OUT.spv OUT.inc SYMBOL\n"); return 2; }
+  const bool requireMarked = argc > 1 && std::string(argv[1]) == "--require-marked";
+  if (requireMarked) { --argc; ++argv; }
+  if (argc != 5) { std::fprintf(stderr, "usage: spv_nocontract [--require-marked] IN.spv OUT.spv OUT.inc SYMBOL\n"); return 2; }
   std::ifstream in(argv[1], std::ios::binary);
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
   if (!in.good() && !in.eof()) { std::fprintf(stderr, "%s: cannot read\n", argv[1]); return 1; }
@@ -41,6 +47,15 @@ int main(int argc, char** argv) {
     if (isFloatArith(op)) wanted.insert(w[i + 2]);
     if (!firstType && op >= 19 && op <= 39) firstType = i;  // OpType*: annotations end before it
     i += n;
+  }
+  if (requireMarked) {
+    size_t unmarked = 0;
+    for (uint32_t id : wanted) unmarked += !decorated.count(id);
+    if (unmarked) {
+      std::fprintf(stderr, "%s: %zu float operations without NoContraction after optimisation (e.g. %%%u)\n", argv[1],
+                   unmarked, *std::find_if(wanted.begin(), wanted.end(), [&](uint32_t id) { return !decorated.count(id); }));
+      return 1;
+    }
   }
   std::vector<uint32_t> out(w.begin(), w.begin() + firstType);
   for (uint32_t id : wanted)
