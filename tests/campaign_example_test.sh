@@ -45,5 +45,5 @@ assert devices == {"lavapipe", "swiftshader"}, devices
 assert all(r["skip_reason"] for r in rows if r["status"] == "skipped")
 print(f"campaign example: {len(frames)} whole frames bit-identical on {len(devices)} devices, {skipped} refusals with reasons")
 PY
-grep -c 'class="passed"' "$work/slurm/report.html" > /dev/null || fail "report"
+grep -q 'class="passed"' "$work/slurm/report.html" || fail "report"
 echo "campaign example: $torun jobs through Slurm ($tasks array tasks) in $(( $(date +%s) - start )) s, all passed"
