@@ -114,6 +114,10 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"first_dispatch_seconds\": 0.0", "\"first_dispatch_seconds\": -1")).find("'first_dispatch_seconds' must be a number >= 0"),
             std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"compile_seconds_per_word\": 0.0", "\"compile_seconds_per_word\": -1e-9"))
+                .find("'compile_seconds_per_word' must be a number >= 0"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"compile_seconds_per_word\": 0.0,", "")).find("compile_seconds_per_word"), std::string::npos);
   EXPECT_NE(errorOf(replaced("\"workgroup_seconds\": 0.0", "\"workgroup_seconds\": null")).find("'workgroup_seconds' must be a number >= 0"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"uniform\"", "\"uniforms\"")).find("unknown key 'lookups_per_second.uniforms'"), std::string::npos);

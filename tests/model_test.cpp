@@ -118,6 +118,11 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   EXPECT_DOUBLE_EQ(predict(input, jit).launchSeconds, 1e-4 + 5e-4 + 100 * 1e-6);
   input.workgroups = 7;  // counted explicitly (a MIP chain: one set per level)
   EXPECT_DOUBLE_EQ(predict(input, jit).launchSeconds, 1e-4 + 5e-4 + 7 * 1e-6);
+  jit.compileSecondsPerWord = 5e-8;  // a first dispatch compiles the module: a cost that grows with its size
+  input.pipelineWords = 6000;
+  EXPECT_DOUBLE_EQ(predict(input, jit).launchSeconds, 1e-4 + 5e-4 + 6000 * 5e-8 + 7 * 1e-6);
+  input.pipelines = 0, input.pipelineWords = 0;  // a warm pipeline (the persistent passes): neither
+  EXPECT_DOUBLE_EQ(predict(input, jit).launchSeconds, 1e-4 + 7 * 1e-6);
   PassCounts raster;  // triangles, covered pixels and render-target bytes at the raster rates
   raster.dispatches = 1, raster.triangles = 20000, raster.fragments = 3000000, raster.attachmentBytes = 50000000;
   raster.invocations = 640000;  // vertex and fragment lanes: no compute workgroups

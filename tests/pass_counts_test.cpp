@@ -123,6 +123,14 @@ TEST(PassCounts, RasterAndComputeShapes) {
     if (p.pass == "gbuffer" || p.pass == "shade" || p.pass == "visibility-fit") {
       EXPECT_EQ(p.pipelines, 0u) << p.pass;
     }
+    // A new pipeline's first dispatch compiles its module: each counts the module's size, a real SPIR-V module's
+    // (more than a header and an entry point; below the 102K words of the calibrate module, the largest).
+    if (p.pipelines) {
+      EXPECT_GT(p.pipelineWords, 400u * p.pipelines) << p.pass;
+      EXPECT_LT(p.pipelineWords, 50000u * p.pipelines) << p.pass;
+    } else {
+      EXPECT_EQ(p.pipelineWords, 0u) << p.pass;
+    }
   }
 }
 

@@ -13,6 +13,8 @@
 #include <thread>
 #include <vector>
 
+#include <unistd.h>
+
 #include "emu/device_profile.h"
 #include "model/vertex_cache.h"
 #include "passes/passes_vk.h"
@@ -27,6 +29,7 @@ namespace shadetwin {
 namespace {
 #include "calibrate_comp.inc"
 #include "calibrate_group_comp.inc"
+#include "calibrate_compile_comp.inc"
 
 struct Push {
   uint32_t kind, iters, count, pad;
@@ -41,8 +44,10 @@ enum Kind : uint32_t {
 // Chain steps per iteration of the arithmetic kernels (calibrate.comp STEPS_INDEP, STEPS_DEP).
 constexpr double kSteps = 128.0;
 
-// The host's last-level cache (sysfs), for the description: line size and capacity.
-void hostCache(int& lineBytes, double& bytes) {
+// The host's last-level cache, for the description: line size and capacity, and where they were read (sysfs; where a
+// virtual machine has no sysfs cache entries, glibc's sysconf from CPUID: its level 3 where it is a plausible size, a
+// VM's CPUID can report the whole host's, 508 MiB on one; else its level 2; else 1 MiB assumed).
+std::string hostCache(int& lineBytes, double& bytes) {
   lineBytes = 64, bytes = 0.0;
   int bestLevel = 0;
   for (int idx = 0; idx < 8; ++idx) {
@@ -56,7 +61,14 @@ void hostCache(int& lineBytes, double& bytes) {
     if (size.back() == 'M') b *= 1024.0 * 1024.0;
     if (level >= bestLevel) bestLevel = level, bytes = b, lineBytes = line;
   }
-  if (bytes <= 0.0) bytes = 1024.0 * 1024.0;
+  if (bytes > 0.0) return "sysfs";
+  const long l3 = sysconf(_SC_LEVEL3_CACHE_SIZE), l2 = sysconf(_SC_LEVEL2_CACHE_SIZE);
+  const long line = sysconf(_SC_LEVEL1_DCACHE_LINESIZE);
+  if (line > 0) lineBytes = int(line);
+  if (l3 > 0 && l3 <= 256L << 20) return bytes = double(l3), "sysconf level 3 (no sysfs cache entries)";
+  if (l2 > 0) return bytes = double(l2), "sysconf level 2 (no sysfs cache entries; level 3 " + std::to_string(l3 >> 20) + " MiB is not a plausible size)";
+  bytes = 1024.0 * 1024.0;
+  return "1 MiB assumed (no sysfs cache entries, no sysconf sizes)";
 }
 }  // namespace
 
@@ -151,6 +163,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   std::vector<uint32_t> rateIters;  // each rate's iteration count, found in the first round and kept after
   std::ostringstream earlier;  // the rounds before the last: their details are not printed
   model::DeviceDesc result;
+  std::string cacheSource;  // where hostCache read the cache
   for (int round = 0; round < rounds; ++round) {
     best.nextRound();
     earlier.str("");
@@ -178,25 +191,34 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       out << "  workgroup " << perGroup * 1e9 << " ns per workgroup of 64 (an empty kernel in a module of its own, 4096 "
           << "workgroups vs 64: " << tMany * 1e3 << " / " << tFew * 1e3 << " ms)\n";
     }
-    // A pipeline's first dispatch (the Vulkan build creates the technique inputs' pipelines each time it builds them):
-    // the empty kernel on a pipeline created just before, less its own second dispatch right after, the median of 9
-    // such pairs. Paired, so a host that is slower for a while (SwiftShader's workers after a 0.2 s compile, another
-    // process) moves both runs of a pair: the fastest first run less the fastest warm dispatch read 410 us in one
-    // SwiftShader calibration and 125 us in the next. A median, not fastestOf: contention can slow either run of a pair,
-    // so a difference's noise is two-sided and its minimum is biased low. lavapipe compiles a pipeline's machine code at
-    // its first dispatch.
-    double firstDispatch = 0.0;
+    // A pipeline's first dispatch (the Vulkan build creates the technique inputs' pipelines each time it builds them,
+    // and a pass made that way runs once on it): lavapipe compiles a compute shader's machine code at its first dispatch,
+    // and the compiled code then runs cold, so the first dispatch costs more than a warm one, more for a larger module
+    // (probes, docs/RESULTS.md session 31: 0.3 ms more for the 0.4K-word group module, 0.6 ms for mip_downsample's 6K
+    // words, 1.0 ms for the paraboloid module's 12K). Two modules of their own and of known size, calibrate_group.comp
+    // and the straight-line calibrate_compile.comp: on each, the fastest first dispatch of 9 pipelines created just
+    // before, less the warm dispatch above (the pass times are the fastest of their runs, each on a new pipeline, so the
+    // fastest against the fastest). The cost per SPIR-V word is the line through the two; the cost of a pipeline
+    // itself is that line at zero words. Earlier calibrations read the first dispatch of calibrate.comp's empty kind
+    // against its second: 0.58 ms, more than the whole SH reduction measures (0.37 ms), as that module is 102K words
+    // before its kinds fold.
+    double firstDispatch = 0.0, compilePerWord = 0.0;
     {
-      std::vector<double> extra;
-      for (int r = 0; r < 9; ++r) {
-        const uint32_t spec[] = {kEmptyK, 0};
-        vk::Kernel fresh(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout, sizeof(Push), std::span<const uint32_t>{}, spec);
-        const double first = runOnce(fresh, e, nearest->handle(), 64);
-        extra.push_back(first - runOnce(fresh, e, nearest->handle(), 64));
-      }
-      std::nth_element(extra.begin(), extra.begin() + 4, extra.end());
-      firstDispatch = std::max(best.low(extra[4]), 0.0);
-      out << "  first dispatch of a new pipeline: " << firstDispatch * 1e6 << " us beyond its second (median of 9 pairs)\n";
+      auto firstOf = [&](std::span<const uint32_t> spv) {
+        std::vector<double> t;
+        for (int r = 0; r < 9; ++r) {
+          vk::Kernel fresh(ctx, vk::Stage::Compute, spv, layout, sizeof(Push));
+          t.push_back(runOnce(fresh, e, nearest->handle(), 64));
+        }
+        return std::max(best.low(fastestOf(t)) - dispatch, 0.0);
+      };
+      const double w0 = double(std::size(kSpv_calibrate_group_comp)), w1 = double(std::size(kSpv_calibrate_compile_comp));
+      const double small = firstOf(kSpv_calibrate_group_comp), large = firstOf(kSpv_calibrate_compile_comp);
+      compilePerWord = std::max(large - small, 0.0) / (w1 - w0);
+      firstDispatch = std::max(small - compilePerWord * w0, 0.0);
+      out << "  first dispatch of a new pipeline: " << small * 1e6 << " us beyond a warm dispatch for " << w0 << " SPIR-V words, "
+          << large * 1e6 << " us for " << w1 << ": " << firstDispatch * 1e6 << " us + " << compilePerWord * 1e9
+          << " ns per word\n";
     }
     // A rate from the difference of two runs: N iterations and 2N, N grown in the first round until a run takes half
     // of `target` seconds (and kept in the rounds after, so each run's time is the fastest of every round). The
@@ -329,7 +351,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       view = big->view();
       const double missRate = rate(kTexK, 1.0, nearest->handle(), 1.0f, 0.0f);
       view = img.view();
-      hostCache(d.cacheLineBytes, d.cacheBytes);  // the description's cache; its share of the large texture still hits
+      cacheSource = hostCache(d.cacheLineBytes, d.cacheBytes);  // the description's cache; its share of the large texture still hits
       const double missShare = std::max(0.0, 1.0 - d.cacheBytes / (double(B) * B * 16));
       d.textureMissSeconds = std::max(1.0 / missRate - 1.0 / d.lookupsPerSecond[model::kNearest], 0.0) / std::max(missShare, 0.5);
       // A streamed line: texelFetch along the rows of the large texture against the same on the cache-resident one,
@@ -365,6 +387,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     }
     d.dispatchSeconds = dispatch;
     d.firstDispatchSeconds = firstDispatch;
+    d.compileSecondsPerWord = compilePerWord;
     d.workgroupSeconds = perGroup;
     {  // Blocks no lane takes: the fadd kernel's steps behind a never-true per-lane `if`, inside and around the loop.
       // Each time less the empty kind's over the same invocations in the same module (the launch and the workgroups'
@@ -515,7 +538,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       }
     }
     d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
-                   std::to_string(d.cores) + " cores): microkernels of src/shaders/calibrate.comp only; cache from sysfs";
+                   std::to_string(d.cores) + " cores): microkernels of src/shaders/calibrate*.comp only; cache from " + cacheSource;
     out << std::setprecision(4);
     for (int c = 0; c < model::kOpClasses; ++c) out << "  " << std::left << std::setw(10) << model::kOpClassNames[c] << ops[size_t(c)] / 1e9 << " Gop/s\n";
     for (int f = 0; f < model::kTexFilters; ++f)

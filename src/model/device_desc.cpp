@@ -51,7 +51,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   }
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
-                "dispatch_seconds", "first_dispatch_seconds", "workgroup_seconds", "raster", "texture_miss_seconds",
+                "dispatch_seconds", "first_dispatch_seconds", "compile_seconds_per_word", "workgroup_seconds", "raster", "texture_miss_seconds",
                 "texture_stream_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
                 "folds_specialization_constants", "vertex_cache"},
             path, "");
@@ -88,6 +88,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   d.bandwidthBytesPerSecond = positive(j, "bandwidth_bytes_per_second", path, "");
   d.dispatchSeconds = positive(j, "dispatch_seconds", path, "");
   d.firstDispatchSeconds = nonNegative(j, "first_dispatch_seconds", path);
+  d.compileSecondsPerWord = nonNegative(j, "compile_seconds_per_word", path);
   d.workgroupSeconds = nonNegative(j, "workgroup_seconds", path);
   d.textureMissSeconds = nonNegative(j, "texture_miss_seconds", path);
   d.textureStreamSeconds = nonNegative(j, "texture_stream_seconds", path);
@@ -156,6 +157,7 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"bandwidth_bytes_per_second", d.bandwidthBytesPerSecond},
             {"dispatch_seconds", d.dispatchSeconds},
             {"first_dispatch_seconds", d.firstDispatchSeconds},
+            {"compile_seconds_per_word", d.compileSecondsPerWord},
             {"workgroup_seconds", d.workgroupSeconds},
             {"raster", raster},
             {"texture_miss_seconds", d.textureMissSeconds},

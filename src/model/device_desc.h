@@ -77,9 +77,13 @@ struct DeviceDesc {
   // memory bandwidth, like a scattered one).
   double textureStreamSeconds = 0.0;
   double dispatchSeconds = 0.0;          // an empty compute dispatch, submit to completion
-  // A pipeline's first dispatch beyond a warm one (lavapipe compiles its machine code then): calibrate's empty kernel on
-  // a pipeline created just before, the fastest of 9. Charged once per pipeline a pass creates (the technique inputs).
+  // A pipeline's first dispatch beyond a warm one (lavapipe compiles its machine code then, and the code runs cold), as
+  // a line in the module's SPIR-V size: firstDispatchSeconds at zero words plus compileSecondsPerWord per word.
+  // calibrate: the fastest first dispatch of 9 new pipelines of calibrate_group.comp (0.4K words) and of the
+  // straight-line calibrate_compile.comp, each less the warm dispatch. Charged per pipeline a pass creates (the
+  // technique inputs: PassCounts::pipelines and pipelineWords). GPUs compile when the pipeline is created: 0.
   double firstDispatchSeconds = 0.0;
+  double compileSecondsPerWord = 0.0;
   // Per compute workgroup (64 invocations) beyond the work itself: calibrate's same fadd work in 4096 workgroups against
   // 64 (SwiftShader sets up each workgroup's invocations as coroutines: ~15 us; lavapipe ~0.1-0.5 us).
   double workgroupSeconds = 0.0;

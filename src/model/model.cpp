@@ -68,6 +68,7 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   const double submissions = c.triangles ? 1.0 : double(std::max<uint64_t>(c.dispatches, 1));
   const double draws = c.triangles ? double(std::max<uint64_t>(c.dispatches, 1) - 1) : 0.0;
   p.launchSeconds = submissions * d.dispatchSeconds + draws * r.drawSeconds + double(c.pipelines) * d.firstDispatchSeconds +
+                    double(c.pipelineWords) * d.compileSecondsPerWord +
                     double(groups) * d.workgroupSeconds;
   const double terms[5] = {p.aluSeconds, p.textureSeconds, p.memorySeconds, p.rasterSeconds, p.launchSeconds};
   const char* names[5] = {"alu", "texture", "memory", "raster", "launch"};

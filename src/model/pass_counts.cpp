@@ -17,6 +17,12 @@
 #include "passes/mips.h"
 #include "passes/shadow.h"
 #include "passes/visibility.h"
+// The technique inputs' modules, for their sizes only (a first dispatch compiles the module: PassCounts::pipelineWords).
+#include "glint_lighting_comp.inc"
+#include "mip_downsample.inc"
+#include "paraboloid_resample_comp.inc"
+#include "sh_project_comp.inc"
+#include "sh_reduce_comp.inc"
 
 namespace shadetwin::model {
 namespace {
@@ -53,6 +59,7 @@ std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float
   std::vector<std::vector<float>> chain;
   addTicks(c, countedTicks([&] { chain = mipChainCpu(level0, w, h, layers, 0); }, core, &c.scheduledSeconds), 8);
   ++c.pipelines;  // the Vulkan build makes the chain's pipeline per chain (passes/mips.cpp)
+  c.pipelineWords += sizeof(kSpv_mip_downsample) / 4;
   for (size_t l = 1; l < chain.size(); ++l) {
     const uint32_t dw = std::max(1u, w >> l), dh = std::max(1u, h >> l);
     c.invocations += uint64_t((dw + 7) / 8 * 8) * dh * layers;
@@ -67,7 +74,7 @@ std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float
 // Adds another run of the same pass (the material maps' MIP chain after the atlas's).
 void accumulate(PassCounts& into, const PassCounts& c) {
   for (int k = 0; k < opcount::kKinds; ++k) into.ops[size_t(k)] += c.ops[size_t(k)];
-  into.invocations += c.invocations, into.dispatches += c.dispatches, into.pipelines += c.pipelines;
+  into.invocations += c.invocations, into.dispatches += c.dispatches, into.pipelines += c.pipelines, into.pipelineWords += c.pipelineWords;
   into.workgroups += c.workgroups;
   into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.scheduledSeconds += c.scheduledSeconds;
 }
@@ -136,6 +143,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     PassCounts pa;
     pa.pass = "paraboloid";
     pa.pipelines = 1;  // the Vulkan build makes each input's pipeline when it builds the input
+    pa.pipelineWords = sizeof(kSpv_paraboloid_resample_comp) / 4;
     std::vector<float> atlas;
     addTicks(pa, countedTicks([&] { atlas = paraboloidAtlasCounted(env, dev, scene.fisFaceSize); }, core, &pa.scheduledSeconds), 8);
     const size_t n = 2 * size_t(scene.fisFaceSize) * scene.fisFaceSize;
@@ -152,6 +160,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     PassCounts pr, rd;
     pr.pass = "sh-project", rd.pass = "sh-reduce";
     pr.pipelines = rd.pipelines = 1;
+    pr.pipelineWords = sizeof(kSpv_sh_project_comp) / 4, rd.pipelineWords = sizeof(kSpv_sh_reduce_comp) / 4;
     std::array<uint64_t, opcount::kKinds> project{};
     ShIrradiance sh;
     double projectSeconds = 0;
@@ -178,6 +187,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     PassCounts gl;
     gl.pass = "glint-lighting";
     gl.pipelines = 1;
+    gl.pipelineWords = sizeof(kSpv_glint_lighting_comp) / 4;
     GlintLightingTable t;
     addTicks(gl, countedTicks([&] { t = glintLightingCounted(env, dev, in.glints->lightingSpec); }, core, &gl.scheduledSeconds), 8);
     const GlintLightingTable e = glintLightingEmu(env, dev, in.glints->lightingSpec);

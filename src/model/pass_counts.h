@@ -27,6 +27,7 @@ struct PassCounts {
   uint64_t invocations = 0;   // compute: invocations incl. the tail; raster: vertex invocations + fragment lanes
   uint64_t dispatches = 0;    // dispatches or draws
   uint64_t pipelines = 0;     // pipelines created for the pass and first dispatched in it (the technique inputs)
+  uint64_t pipelineWords = 0; // the SPIR-V words of those pipelines' modules (a first dispatch compiles them)
   uint64_t workgroups = 0;    // compute workgroups dispatched (0: one per 64 invocations; raster passes have none)
   uint64_t bytesRead = 0, bytesWritten = 0;  // buffer traffic (texture reads are in the lookups)
   uint64_t attachmentBytes = 0;  // raster passes: render-target bytes cleared and copied out
