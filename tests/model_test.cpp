@@ -87,6 +87,12 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   c.ops[opcount::kTexUniform] = 800000;      // 1 ms at 8e8/s (texelFetchUniform, per lane)
   c.bytesRead = 10000000, c.bytesWritten = 5000000;  // 1.5 ms at 1e10 B/s
   const Prediction s = predict(c, device(false));
+  {  // re-read buffer bytes (a MIP level's 3x3 footprints) cost a software device their bytes, a GPU nothing
+    PassCounts r = c;
+    r.bytesReread = 20000000;  // 2 ms at 1e10 B/s
+    EXPECT_DOUBLE_EQ(predict(r, device(false)).memorySeconds, 1.5e-3 + 2e-3);
+    EXPECT_DOUBLE_EQ(predict(r, device(true)).memorySeconds, predict(c, device(true)).memorySeconds);
+  }
   {  // texture lines the cache simulation missed cost the device's miss time each, in the texture term
     PassCounts m = c;
     m.ops[opcount::kTexMiss] = 20000;

@@ -119,6 +119,10 @@ TEST(PassCounts, RasterAndComputeShapes) {
     }
     if (p.pass == "mips") {
       EXPECT_EQ(p.pipelines, 1u);  // bunny: the atlas's chain only (no material maps)
+      // 9 vec4 loads per texel of each level (mip_downsample.glsl's 3x3 footprint), of which bytesRead holds the
+      // distinct ones (4 a texel, 2x2 of the level above, but at the 1-texel levels of a 2:1 chain).
+      EXPECT_EQ(p.bytesRead + p.bytesReread, p.bytesWritten * 9);
+      EXPECT_GT(p.bytesReread, p.bytesRead);
     }
     if (p.pass == "gbuffer" || p.pass == "shade" || p.pass == "visibility-fit") {
       EXPECT_EQ(p.pipelines, 0u) << p.pass;

@@ -57,7 +57,9 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
                      c.ops[opcount::kTexUniform] / d.lookupsPerSecond[kUniformFetch] +
                      (c.ops[opcount::kTexMiss] - c.ops[opcount::kTexStreamMiss]) * d.textureMissSeconds +
                      c.ops[opcount::kTexStreamMiss] * d.textureStreamSeconds;  // the cache simulation's missed lines
-  p.memorySeconds = double(c.bytesRead + c.bytesWritten) / d.bandwidthBytesPerSecond;
+  // Software devices (units that do not overlap: the same cores load every storage-buffer element) pay the re-read
+  // bytes as well; a GPU's caches serve them.
+  p.memorySeconds = double(c.bytesRead + c.bytesWritten + (d.unitsOverlap ? 0 : c.bytesReread)) / d.bandwidthBytesPerSecond;
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
   const uint64_t outside = std::min(c.outsideTriangles, c.triangles);
   p.rasterSeconds = double(c.triangles - outside) / r.trianglesPerSecond + double(outside) * r.outsideTriangleSeconds +

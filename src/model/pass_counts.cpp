@@ -66,6 +66,9 @@ std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float
     c.workgroups += (uint64_t(dw) * dh * layers + 63) / 64;  // passes/mips.cpp: one invocation per texel of the level
     c.bytesWritten += chain[l].size() * 4;
     c.bytesRead += chain[l - 1].size() * 4;
+    // mip_downsample.glsl reads a 3x3 footprint (clamped at the edges) per texel of the level: 9 vec4 loads each.
+    const uint64_t loads = uint64_t(dw) * dh * layers * 9 * 16;
+    c.bytesReread += loads > chain[l - 1].size() * 4 ? loads - chain[l - 1].size() * 4 : 0;
     ++c.dispatches;
   }
   return chain;
@@ -76,7 +79,7 @@ void accumulate(PassCounts& into, const PassCounts& c) {
   for (int k = 0; k < opcount::kKinds; ++k) into.ops[size_t(k)] += c.ops[size_t(k)];
   into.invocations += c.invocations, into.dispatches += c.dispatches, into.pipelines += c.pipelines, into.pipelineWords += c.pipelineWords;
   into.workgroups += c.workgroups;
-  into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.scheduledSeconds += c.scheduledSeconds;
+  into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.bytesReread += c.bytesReread, into.scheduledSeconds += c.scheduledSeconds;
 }
 
 }  // namespace
