@@ -44,6 +44,14 @@ struct Checker {
   }
 };
 
+// A pipeline the pass creates and first dispatches (the Vulkan build makes the technique inputs' pipelines when it builds
+// them): its first dispatch compiles `module`, so the pass counts the module's size with it.
+template <size_t N>
+void addPipeline(PassCounts& c, const uint32_t (&module)[N]) {
+  ++c.pipelines;
+  c.pipelineWords += N;
+}
+
 void addRaster(PassCounts& c, const emu::RasterStats& r) {
   c.triangles += r.trianglesIn;
   c.fragments += r.fragments;
@@ -58,8 +66,7 @@ std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float
                                           const CoreModel& core) {
   std::vector<std::vector<float>> chain;
   addTicks(c, countedTicks([&] { chain = mipChainCpu(level0, w, h, layers, 0); }, core, &c.scheduledSeconds), 8);
-  ++c.pipelines;  // the Vulkan build makes the chain's pipeline per chain (passes/mips.cpp)
-  c.pipelineWords += sizeof(kSpv_mip_downsample) / 4;
+  addPipeline(c, kSpv_mip_downsample);  // the Vulkan build makes the chain's pipeline per chain (passes/mips.cpp)
   for (size_t l = 1; l < chain.size(); ++l) {
     const uint32_t dw = std::max(1u, w >> l), dh = std::max(1u, h >> l);
     c.invocations += uint64_t((dw + 7) / 8 * 8) * dh * layers;
@@ -145,8 +152,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
   if (in.atlas) {
     PassCounts pa;
     pa.pass = "paraboloid";
-    pa.pipelines = 1;  // the Vulkan build makes each input's pipeline when it builds the input
-    pa.pipelineWords = sizeof(kSpv_paraboloid_resample_comp) / 4;
+    addPipeline(pa, kSpv_paraboloid_resample_comp);
     std::vector<float> atlas;
     addTicks(pa, countedTicks([&] { atlas = paraboloidAtlasCounted(env, dev, scene.fisFaceSize); }, core, &pa.scheduledSeconds), 8);
     const size_t n = 2 * size_t(scene.fisFaceSize) * scene.fisFaceSize;
@@ -162,8 +168,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
 
     PassCounts pr, rd;
     pr.pass = "sh-project", rd.pass = "sh-reduce";
-    pr.pipelines = rd.pipelines = 1;
-    pr.pipelineWords = sizeof(kSpv_sh_project_comp) / 4, rd.pipelineWords = sizeof(kSpv_sh_reduce_comp) / 4;
+    addPipeline(pr, kSpv_sh_project_comp), addPipeline(rd, kSpv_sh_reduce_comp);
     std::array<uint64_t, opcount::kKinds> project{};
     ShIrradiance sh;
     double projectSeconds = 0;
@@ -189,8 +194,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
   if (in.glints) {
     PassCounts gl;
     gl.pass = "glint-lighting";
-    gl.pipelines = 1;
-    gl.pipelineWords = sizeof(kSpv_glint_lighting_comp) / 4;
+    addPipeline(gl, kSpv_glint_lighting_comp);
     GlintLightingTable t;
     addTicks(gl, countedTicks([&] { t = glintLightingCounted(env, dev, in.glints->lightingSpec); }, core, &gl.scheduledSeconds), 8);
     const GlintLightingTable e = glintLightingEmu(env, dev, in.glints->lightingSpec);
