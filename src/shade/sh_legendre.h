@@ -35,21 +35,27 @@ struct ShLeg {
 // Pbar_0^0.
 ShLeg shLegSeed0() { return ShLeg(Float(0.282094792f), Float(0.0f), Int(0)); }
 
-// Pbar_m^m from Pbar_{m-1}^{m-1} (s = sin(theta) >= 0, m >= 1).
-ShLeg shLegSeedNext(ShLeg s, Sampler2D coef, int m, Float sinT) {
-  PRECISE Float p = s.p * (texelFetchUniform(coef, m, m, 0).x * sinT);
+// Pbar_m^m from Pbar_{m-1}^{m-1} (s = sin(theta) >= 0, m >= 1), with the table's seed factor f = texel (m, m).x
+// already read (a loop over many directions of one m reads it once: glint_lighting.h).
+ShLeg shLegSeedStep(ShLeg s, Float f, Float sinT) {
+  PRECISE Float p = s.p * (f * sinT);
   Mask small = abs(p) < 2.3283064e-10f;  // 2^-32
   return ShLeg(select(small, p * 4294967296.0f, p), Float(0.0f), s.k + select(small, Int(1), Int(0)));
 }
+ShLeg shLegSeedNext(ShLeg s, Sampler2D coef, int m, Float sinT) { return shLegSeedStep(s, texelFetchUniform(coef, m, m, 0).x, sinT); }
 
-// Pbar_l^m from Pbar_{l-1}^m (and Pbar_{l-2}^m), l >= m + 1; z = cos(theta).
-ShLeg shLegNext(ShLeg s, Sampler2D coef, int l, int m, Float z) {
-  Float4 c = texelFetchUniform(coef, l, m, 0);
-  PRECISE Float first = c.x * (z * s.p);
-  PRECISE Float general = c.x * (z * s.p - c.y * s.q);
-  Float p = select(Mask(l == m + 1), first, general);
+// Pbar_l^m from Pbar_{l-1}^m (and Pbar_{l-2}^m), l >= m + 1; z = cos(theta); a, b = texel (l, m).x, .y of the table,
+// already read; first: l == m + 1 (no Pbar_{l-2}^m term).
+ShLeg shLegStep(ShLeg s, Float a, Float b, Mask first, Float z) {
+  PRECISE Float pFirst = a * (z * s.p);
+  PRECISE Float general = a * (z * s.p - b * s.q);
+  Float p = select(first, pFirst, general);
   Mask big = abs(p) > 4294967296.0f && s.k > Int(0);
   return ShLeg(select(big, p * 2.3283064e-10f, p), select(big, s.p * 2.3283064e-10f, s.p), s.k - select(big, Int(1), Int(0)));
+}
+ShLeg shLegNext(ShLeg s, Sampler2D coef, int l, int m, Float z) {
+  Float4 c = texelFetchUniform(coef, l, m, 0);
+  return shLegStep(s, c.x, c.y, Mask(l == m + 1), z);
 }
 
 // The unscaled value p 2^(-32 k) (one rounding; 0 below the float range).
