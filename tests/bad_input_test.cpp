@@ -266,6 +266,15 @@ TEST(BadInput, SceneOverridesNameTheOptionAndTheScene) {
   EXPECT_MENTIONS(errorOf([&] { shadetwin::loadScene(path, o); }), "--vis-maps: ");
   EXPECT_MENTIONS(errorOf([&] { shadetwin::loadScene(path, o); }), "ov.json has no \"visibility\" block");
   o = {};
+  o.glintViews = "9x16";
+  EXPECT_MENTIONS(errorOf([&] { shadetwin::loadScene(path, o); }), "--glint-views: ");
+  EXPECT_MENTIONS(errorOf([&] { shadetwin::loadScene(path, o); }), "ov.json has no glints materials");
+  for (const char* bad : {"1x16", "9x0", "514x16", "9x1025", "9x16q", "9", "x16", "-3x16", ""}) {
+    EXPECT_MENTIONS(errorOf([&] { shadetwin::parseGlintGrid(bad, "--glint-views"); }), "--glint-views: '" + std::string(bad) + "' is not RINGSxSECTORS") << bad;
+  }
+  EXPECT_EQ(shadetwin::parseGlintGrid("2x1", "f"), std::make_pair(2u, 1u));
+  EXPECT_EQ(shadetwin::parseGlintGrid("513x1024", "f"), std::make_pair(513u, 1024u));
+  o = {};
   o.technique = "phong";
   EXPECT_MENTIONS(errorOf([&] { shadetwin::loadScene(path, o); }), "unknown technique 'phong'");
   o = {};

@@ -230,6 +230,17 @@ TEST(Scene, GlintsBlocks) {
   EXPECT_EQ(g.materials[1].glintMap, "scratches");
   EXPECT_FLOAT_EQ(g.materials[1].glintSigma, 0.05f);
   EXPECT_FLOAT_EQ(g.materials[2].glintEta[0], 2.87f);
+  EXPECT_EQ(g.glintViewRings, 65u);  // the default view grid of the lighting table
+  EXPECT_EQ(g.glintViewSectors, 128u);
+  shadetwin::SceneOverrides views;  // --glint-views replaces it and nothing else
+  views.glintViews = "9x16";
+  const shadetwin::Scene v = shadetwin::loadScene(src("scenes/glints.json"), views);
+  EXPECT_EQ(v.glintViewRings, 9u);
+  EXPECT_EQ(v.glintViewSectors, 16u);
+  EXPECT_EQ(v.glintOrder, g.glintOrder);
+  EXPECT_EQ(v.glintRings, g.glintRings);
+  EXPECT_EQ(v.glintSectors, g.glintSectors);
+  EXPECT_EQ(v.width, g.width);
   const std::string base = R"("camera": {"eye": [0, 0, 3], "target": [0, 0, 0]}, "environment": {"file": "../assets/hdri/forest.exr"}, "objects": [{"mesh": "sphere", "material": "m"}])";
   auto scene = [&](const std::string& name, const std::string& extra, const std::string& mat) {
     return writeTemp(name, "{" + base + extra + R"(, "materials": [{"name": "m")" + mat + "}]}");

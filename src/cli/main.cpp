@@ -25,7 +25,7 @@
 namespace {
 
 // The scene options, defined once for every command that renders (issue 22): which of them a command takes.
-enum SceneOptions : unsigned { kSize = 1, kTechnique = 2, kSamples = 4, kBlocks = 8, kVisMaps = 16, kAllScene = 31 };
+enum SceneOptions : unsigned { kSize = 1, kTechnique = 2, kSamples = 4, kBlocks = 8, kVisMaps = 16, kGlintViews = 32, kAllScene = 63 };
 
 // The scene file, as the first positional argument or --scene (both spellings on every command), and the overrides
 // of shadetwin::SceneOverrides that `which` names.
@@ -52,6 +52,10 @@ void addSceneOptions(CLI::App* cmd, std::string& scene, shadetwin::SceneOverride
   if (which & kVisMaps)
     cmd->add_option("--vis-maps", o.visMaps, "shadow maps K of the scene's visibility block (default: the scene's)")
         ->check(CLI::Range(1, 1024));
+  if (which & kGlintViews)
+    cmd->add_option("--glint-views", o.glintViews,
+                    "RINGSxSECTORS: view grid of a glints scene's lighting table (default: the scene's glints.view_rings x "
+                    "view_sectors, 65x128)");
 }
 
 }  // namespace

@@ -166,18 +166,11 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
         << " ms  SATs " << in.glints->satBytes / (1 << 20) << " MiB  RMSE " << std::setprecision(5) << m.rmse << "  PSNR "
         << std::setprecision(2) << m.psnr << " dB\n";
   }
-  // A grid RINGSxSECTORS of --glint-views / --glint-lobes.
-  auto parseGrid = [](const std::string& g, const char* flag) {
-    unsigned rings = 0, sectors = 0;
-    if (std::sscanf(g.c_str(), "%ux%u", &rings, &sectors) != 2 || rings < 2 || rings > 513 || sectors < 1 || sectors > 1024)
-      throw std::invalid_argument(std::string(flag) + ": '" + g + "' is not RINGSxSECTORS (rings 2-513, sectors 1-1024)");
-    return std::pair<uint32_t, uint32_t>{rings, sectors};
-  };
   // The lighting table's view grid at the scene's degree (the paper's Fig. 17): build time, memory, error.
   std::stringstream vl(opts.glintViews);
   while (std::getline(vl, spec, ',')) {
     Scene sv = scene;
-    std::tie(sv.glintViewRings, sv.glintViewSectors) = parseGrid(spec, "--glint-views");
+    std::tie(sv.glintViewRings, sv.glintViewSectors) = parseGlintGrid(spec, "--glint-views");
     const EmuRun e = emuRun(sv);
     const ShadeInputs& in = e.in;
     const double ms = e.ms;
@@ -193,7 +186,7 @@ int glintsSweep(const SweepOptions& opts, std::ostream& log) {
   std::stringstream ll(opts.glintLobes);
   while (std::getline(ll, spec, ',')) {
     Scene sl = scene;
-    std::tie(sl.glintLobeRings, sl.glintLobeSectors) = parseGrid(spec, "--glint-lobes");
+    std::tie(sl.glintLobeRings, sl.glintLobeSectors) = parseGlintGrid(spec, "--glint-lobes");
     const EmuRun e = emuRun(sl);
     const ShadeInputs& in = e.in;
     const std::vector<float>& img = e.img;

@@ -2,7 +2,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <tuple>
 #include <limits>
 #include <filesystem>
 #include <fstream>
@@ -228,6 +231,20 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     if (!scene.visMaps) throw std::invalid_argument("--vis-maps: " + scene.path + " has no \"visibility\" block");
     scene.visMaps = o.visMaps;
   }
+  if (!o.glintViews.empty()) {
+    const auto grid = parseGlintGrid(o.glintViews, "--glint-views");
+    if (std::none_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.glints; }))
+      throw std::invalid_argument("--glint-views: " + scene.path + " has no glints materials");
+    std::tie(scene.glintViewRings, scene.glintViewSectors) = grid;
+  }
+}
+
+std::pair<uint32_t, uint32_t> parseGlintGrid(const std::string& g, const char* flag) {
+  unsigned rings = 0, sectors = 0;
+  char tail = 0;
+  if (std::sscanf(g.c_str(), "%ux%u%c", &rings, &sectors, &tail) != 2 || rings < 2 || rings > 513 || sectors < 1 || sectors > 1024)
+    throw std::invalid_argument(std::string(flag) + ": '" + g + "' is not RINGSxSECTORS (rings 2-513, sectors 1-1024)");
+  return {rings, sectors};
 }
 
 Scene loadScene(const std::string& path, const SceneOverrides& o) {

@@ -5,6 +5,7 @@
 #include <array>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/mesh.h"
@@ -170,9 +171,14 @@ struct SceneOverrides {
                                     // pairs per frame; glints-gxd: G x D pairs)
   uint32_t blocks = 0;              // --blocks: kd-tree / alias blocks of the *-mis samplers
   uint32_t visMaps = 0;             // --vis-maps: shadow maps K of the scene's "visibility" block
+  std::string glintViews;           // --glint-views RINGSxSECTORS: the glints lighting table's view grid
 };
+/// A grid RINGSxSECTORS (rings 2-513, sectors 1-1024: the scene file's glints.view_rings / view_sectors and lobe_rings /
+/// lobe_sectors ranges); throws std::invalid_argument naming `flag` and the text otherwise.
+std::pair<uint32_t, uint32_t> parseGlintGrid(const std::string& grid, const char* flag);
 /// Applies `o` to `scene`; throws std::invalid_argument naming the scene file and the option for an unknown technique,
-/// a glints technique on a scene without glints materials, or --vis-maps on a scene without a visibility block.
+/// a glints technique on a scene without glints materials, --vis-maps on a scene without a visibility block, or
+/// --glint-views on a scene without glints materials or with a grid out of range.
 void applyOverrides(Scene& scene, const SceneOverrides& o);
 /// loadScene(path) with `o` applied.
 Scene loadScene(const std::string& path, const SceneOverrides& o);
