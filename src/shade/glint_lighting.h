@@ -17,9 +17,11 @@ struct GlintColumn {
 };
 
 // The recurrence's table entries of column m (they depend on l and m only, never on the texel): read once per call
-// instead of once per texel (session 30's note: 36,864 uniform fetches per invocation at order 16 over 64 x 32
-// texels). Seed factors of k = 1 .. m, and a, b of l = m + 1 .. order at index l - m. Every build multiplies by
-// the same floats in the same order as before, so the table's bits do not change.
+// instead of once per texel (36,864 uniform fetches an invocation at order 16 over 64 x 32 texels, now 4,112). Seed
+// factors of k = 1 .. m, and a, b of l = m + 1 .. order at index l - m. Every build multiplies by the same floats in
+// the same order as before, so the table's bits do not change. Measured (docs/RESULTS.md, session 32): the emulator
+// 1.23x and SwiftShader 1.06x faster; lavapipe not, since it reads an array at a loop-variable index with a scalar
+// load per lane (as it reads and writes col.c below), which costs it about what the uniform fetch did.
 struct GlintCoefs {
   Float seed[kGlintMaxOrder + 1];
   Float a[kGlintMaxOrder + 1];
