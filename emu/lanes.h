@@ -134,6 +134,13 @@ template <int N> inline int loopScope(F32<N>) { return 0; }
 /// The dialect's specMask and texelFetchUniform hooks: a plain mask, and nothing to count.
 template <int N> inline Mask<N> specConstantMask(F32<N>, bool b) { return Mask<N>(b); }
 template <int N> inline void countUniformFetches(F32<N>) {}
+/// The dialect's arrayGet / arraySet hooks (a private array at a non-literal index): the value itself.
+template <int N> inline F32<N> indexedRead(F32<N> v) { return v; }
+template <int N> inline I32<N> indexedRead(I32<N> v) { return v; }
+template <int N> inline U32<N> indexedRead(U32<N> v) { return v; }
+template <int N> inline F32<N> indexedWrite(F32<N> v) { return v; }
+template <int N> inline I32<N> indexedWrite(I32<N> v) { return v; }
+template <int N> inline U32<N> indexedWrite(U32<N> v) { return v; }
 
 /// High 32 bits of the 64-bit product (GLSL umulExtended's msb).
 template <int N>

@@ -11,6 +11,7 @@
 #include "inputs/glint_tables.h"
 #include "inputs/glints.h"
 #include "inputs/sh_legendre.h"
+#include "model/pass_counts.h"
 
 namespace {
 constexpr double kPi = std::numbers::pi;
@@ -169,4 +170,39 @@ TEST(GlintLighting, HalfVectorLightingOfAConstantSkyIsNotBandLimited) {
   const shadetwin::GlintLightingTable t = shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), s);
   for (uint32_t lim : shadetwin::glintLightBandLimits(t, 1e-6)) EXPECT_EQ(lim, 12u);
   for (uint32_t lim : shadetwin::glintLightBandLimits(t, 1e-2)) EXPECT_GE(lim, 8u);
+}
+
+TEST(GlintLighting, CountedRunCountsEveryPrivateArrayAccessOfTheKernel) {
+  // The kernel keeps its column and the recurrence's entries in local arrays read and written at loop-variable indices
+  // (arrayGet / arraySet: what lavapipe runs as a load per lane and a masked store per lane). Per 8-lane vector of views
+  // of column m, per band of T texels: the column's 390 zeroes, m seed factors and 2 (O - m) entries written, then per
+  // texel m + 2 (O - m) entries and 6 (O - m + 1) column values read and those 6 (O - m + 1) written. The counted
+  // table keeps the emulator's bits.
+  const uint32_t W = 12, H = 7;
+  std::vector<float> px(size_t(W) * H * 4);
+  for (size_t i = 0; i < px.size(); ++i) px[i] = (i % 4 == 3) ? 1.0f : float(1 + (i * 29) % 13) * 0.25f;
+  const emu::Texture env = emu::floatTexture(emu::Format::RGBA32F, W, H, px.data());
+  for (uint32_t order : {0u, 3u, 7u})
+    for (uint32_t bandRows : {0u, 3u})
+      for (uint32_t sectors : {5u, 9u}) {
+        const shadetwin::GlintLightingSpec spec{order, 2, sectors, 0, bandRows};
+        shadetwin::GlintLightingTable counted;
+        const auto ticks = shadetwin::model::countedTicks(
+            [&] { counted = shadetwin::glintLightingCounted(env, emu::lavapipeProfile(), spec); });
+        const uint64_t vectors = (2 * sectors + 7) / 8;
+        uint64_t reads = 0, writes = 0;
+        for (uint32_t y0 = 0; y0 < H; y0 += bandRows ? bandRows : H) {
+          const uint64_t texels = uint64_t(W) * (std::min(H, y0 + (bandRows ? bandRows : H)) - y0);
+          for (uint64_t m = 0; m <= order; ++m) {
+            const uint64_t col = 6 * (order - m + 1), entries = m + 2 * (order - m);
+            reads += vectors * texels * (entries + col);
+            writes += vectors * (390 + entries + texels * col);
+          }
+        }
+        EXPECT_EQ(ticks[opcount::kPrivRead], reads) << order << " " << bandRows << " " << sectors;
+        EXPECT_EQ(ticks[opcount::kPrivWrite], writes) << order << " " << bandRows << " " << sectors;
+        const auto emu = shadetwin::glintLightingEmu(env, emu::lavapipeProfile(), spec);
+        ASSERT_EQ(counted.rgba.size(), emu.rgba.size());
+        EXPECT_EQ(std::memcmp(counted.rgba.data(), emu.rgba.data(), emu.rgba.size() * 4), 0);
+      }
 }

@@ -156,3 +156,22 @@ TEST(Model, IntegerComparesAndSelectsAreCostedAtTheirOwnRates) {
 }
 
 }  // namespace
+
+namespace {
+// Private array accesses (the dialect's arrayGet / arraySet) are their own classes, each at its own rate: lavapipe pays
+// a gather or a masked scatter per access, where an fadd beside them is cheap.
+TEST(Model, PrivateArrayAccessesAreCostedAtTheirOwnRates) {
+  PassCounts c;
+  std::array<uint64_t, opcount::kKinds> t{};
+  t[opcount::kPrivRead] = 6, t[opcount::kPrivWrite] = 3, t[opcount::kFAdd] = 2;
+  addTicks(c, t, 8);
+  EXPECT_EQ(scalarOps(c)[kPrivateRead], 48.0);
+  EXPECT_EQ(scalarOps(c)[kPrivateWrite], 24.0);
+  EXPECT_EQ(scalarOps(c)[kIAlu], 0.0);
+  DeviceDesc d = device(false);
+  d.opsPerSecond[kPrivateRead] = 2e8, d.opsPerSecond[kPrivateWrite] = 1e8;
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 48.0 / 2e8 + 24.0 / 1e8 + 16.0 / 1e9);
+  d.opsPerSecond[kPrivateRead] = d.opsPerSecond[kPrivateWrite] = 1e9;  // accesses at the fadd rate
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 88.0 / 1e9);
+}
+}  // namespace

@@ -188,3 +188,41 @@ TEST(OpCount, IntegerComparesAndSelectsCountApartFromFloatOnes) {
     }
   }
 }
+
+// The dialect's arrayGet / arraySet (shade/prelude.h) through the counting hooks: one private_read or private_write per
+// vector access, the value unchanged; with the schedule on, a read is ready one read latency after its element was and
+// the write one write latency after its value (a read of a written element waits for both).
+TEST(OpCount, PrivateArrayAccessesCountApartAndKeepTheirValues) {
+  std::mt19937 rng(33);
+  for (int seed = 0; seed < 5; ++seed) {
+    opcount::counts = {};
+    emu::F32<8> raw;
+    for (int i = 0; i < 8; ++i) raw.set(i, float(int32_t(rng() % 2001u) - 1000) * 0.01f);
+    const opcount::F<8> x(raw);
+    const opcount::F<8> r = opcount::indexedRead(x);
+    const opcount::F<8> w = opcount::indexedWrite(x + r);                  // 1 fadd, 1 write
+    const opcount::U<8> u = opcount::indexedRead(opcount::U<8>(uint32_t(rng())));
+    const opcount::I<8> k = opcount::indexedWrite(opcount::I<8>(int32_t(rng() % 100u)));
+    EXPECT_EQ(opcount::counts[opcount::kPrivRead], 2u);
+    EXPECT_EQ(opcount::counts[opcount::kPrivWrite], 2u);
+    EXPECT_EQ(opcount::counts[opcount::kFAdd], 1u);
+    EXPECT_EQ(opcount::counts[opcount::kIAlu], 0u);
+    for (int i = 0; i < 8; ++i) {
+      EXPECT_EQ(r[i], raw[i]);
+      EXPECT_EQ(w[i], raw[i] + raw[i]);
+    }
+    (void)u, (void)k;
+  }
+  opcount::counts = {};
+  opcount::sched.on = true;
+  opcount::sched.latency = {}, opcount::sched.interval = {};
+  opcount::sched.latency[opcount::kPrivRead] = 3.0, opcount::sched.latency[opcount::kPrivWrite] = 5.0;
+  opcount::sched.latency[opcount::kFAdd] = 1.0;
+  opcount::sched.start();
+  const opcount::F<8> v(emu::F32<8>(1.0f), 2.0);               // ready at 2
+  const opcount::F<8> written = opcount::indexedWrite(v + v);  // fadd done at 3, the write at 8
+  const opcount::F<8> again = opcount::indexedRead(written);   // 11
+  opcount::sched.on = false;
+  EXPECT_DOUBLE_EQ(written.t, 8.0);
+  EXPECT_DOUBLE_EQ(again.t, 11.0);
+}

@@ -66,6 +66,10 @@ TEST_P(PassCountsCoverage, EveryPassTheFrameRunsIsCountedWithTheEmulatorsBits) {
       EXPECT_GT(alu, 0.0) << p.pass;  // a counted run that counted nothing is not a counting run
       EXPECT_GT(p.invocations, 0u) << p.pass;
       EXPECT_GT(p.dispatches, 0u) << p.pass;
+      // Local arrays at run-time indices (arrayGet / arraySet) are the glints kernels' alone.
+      const bool glintsKernel = p.pass == "glint-lighting" || (p.pass == "shade" && scene.technique == "glints");
+      EXPECT_EQ(p.ops[opcount::kPrivWrite] > 0.0, glintsKernel) << p.pass;
+      EXPECT_EQ(p.ops[opcount::kPrivRead] > 0.0, glintsKernel) << p.pass;
     }
     EXPECT_EQ(ran, counted) << GetParam().scene << " " << scene.technique << " on " << dev->name;
     EXPECT_TRUE(f.differing.empty()) << f.differing.front();

@@ -39,7 +39,8 @@ static_assert(sizeof(Push) == 32, "calibrate.comp push constants");
 
 enum Kind : uint32_t {
   kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK,
-  kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK, kShiftK, kICmpK, kISelectK
+  kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK, kShiftK, kICmpK, kISelectK,
+  kPrivReadK, kPrivWriteK
 };
 // Chain steps per iteration of the arithmetic kernels (calibrate.comp STEPS_INDEP, STEPS_DEP).
 constexpr double kSteps = 128.0;
@@ -78,7 +79,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
-  std::unique_ptr<vk::Kernel> kernels[2][kISelectK + 1];
+  std::unique_ptr<vk::Kernel> kernels[2][kPrivWriteK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
       const uint32_t spec[] = {kind, dependent};
@@ -314,6 +315,15 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       const double knownCmp = 1.0 / ops[model::kISelect] + 2.0 / ops[model::kIAlu];
       ops[model::kICmp] = 1.0 / std::max(perCmp - knownCmp, perCmp * 0.1);
     }
+    {  // A local array at a run-time index (the dialect's arrayGet / arraySet): kind 19 does 1 private read + 1 fadd a
+       // step, kind 20 1 private read + 1 fadd + 1 private write (32 steps an iteration); the known shares are removed.
+      constexpr double kPrivSteps = 32.0;
+      const double perRead = 2.0 / rate(kPrivReadK, 2.0 * kPrivSteps, nearest->handle(), 1.0e-3f, 0.0f);
+      ops[model::kPrivateRead] = 1.0 / std::max(perRead - 1.0 / ops[model::kFAdd], perRead * 0.1);
+      const double perRmw = 3.0 / rate(kPrivWriteK, 3.0 * kPrivSteps, nearest->handle(), 1.0e-3f, 0.0f);
+      ops[model::kPrivateWrite] =
+          1.0 / std::max(perRmw - 1.0 / ops[model::kFAdd] - 1.0 / ops[model::kPrivateRead], perRmw * 0.1);
+    }
     {  // Latencies: the same kernels on one chain (DEPENDENT). Per chain step a device vector waits for the previous
        // step, so one core's step time is cores x lanes / (steps per second). Steps: fadd, fmul, imul (squaring) one
        // operation; ialu two dependent ones (xor, add); shift a shift then an add; cvt an fmul then two conversions;
@@ -332,6 +342,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       // the compare (the add and xor beside it).
       lat[model::kISelect] = std::max(step(kISelectK, 1.0e-3f) - lat[model::kIAlu], 0.1 * lat[model::kIAlu]);
       lat[model::kICmp] = std::max(step(kICmpK, 1.5f) - lat[model::kISelect], 0.1 * lat[model::kIAlu]);
+      // A private access: its issue interval (what the glints kernels wait on is the accumulation's fadd chain; their
+      // indices do not depend on the values read).
+      lat[model::kPrivateRead] = perCore / ops[model::kPrivateRead];
+      lat[model::kPrivateWrite] = perCore / ops[model::kPrivateWrite];
       // The window: iterations independent of each other, each a chain of L = 64 dependent fadds. A core that keeps W
       // operations in flight overlaps W / L chains, so an iteration takes L^2 latency / W (never less than its issue
       // time, never more than L latency): W = L^2 latency / t. In counted 8-lane operations: W lanes / 8.
@@ -543,7 +557,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
                    std::to_string(d.cores) + " cores): microkernels of src/shaders/calibrate*.comp only; cache from " + cacheSource;
     out << std::setprecision(4);
-    for (int c = 0; c < model::kOpClasses; ++c) out << "  " << std::left << std::setw(10) << model::kOpClassNames[c] << ops[size_t(c)] / 1e9 << " Gop/s\n";
+    for (int c = 0; c < model::kOpClasses; ++c) out << "  " << std::left << std::setw(14) << model::kOpClassNames[c] << ops[size_t(c)] / 1e9 << " Gop/s\n";
     for (int f = 0; f < model::kTexFilters; ++f)
       out << "  " << std::left << std::setw(10) << model::kTexFilterNames[f] << d.lookupsPerSecond[size_t(f)] / 1e6 << " Mlookup/s\n";
     out << "  bandwidth " << d.bandwidthBytesPerSecond / 1e9 << " GB/s\n  dispatch  " << d.dispatchSeconds * 1e6 << " us\n";

@@ -58,6 +58,13 @@ inline bool ifAnyScope(bool m) { return m; }
 inline int loopScope(float) { return 0; }
 inline bool specConstantMask(float, bool b) { return b; }
 inline void countUniformFetches(float) {}
+// The dialect's arrayGet / arraySet hooks: the value itself.
+inline float indexedRead(float v) { return v; }
+inline int32_t indexedRead(int32_t v) { return v; }
+inline uint32_t indexedRead(uint32_t v) { return v; }
+inline float indexedWrite(float v) { return v; }
+inline int32_t indexedWrite(int32_t v) { return v; }
+inline uint32_t indexedWrite(uint32_t v) { return v; }
 inline uint32_t floatBitsToUint(float x) { return __builtin_bit_cast(uint32_t, x); }
 inline int32_t floatBitsToInt(float x) { return __builtin_bit_cast(int32_t, x); }
 inline float uintBitsToFloat(uint32_t x) { return __builtin_bit_cast(float, x); }

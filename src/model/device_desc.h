@@ -15,9 +15,14 @@ namespace shadetwin::model {
 // icmp, iselect: integer compares and selects of integers or masks (float compares and selects of floats are fcmp and
 // select): SwiftShader runs an integer compare and the select it feeds at ~14x an integer add, a float pair at ~4x
 // (straight-line probes, docs/RESULTS.md session 22); the GPUs at their compare/select rate.
-enum OpClass { kFAdd, kFMul, kIAlu, kIMul, kCvt, kSelect, kFCmp, kShift, kICmp, kISelect, kOpClasses };
-inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd", "fmul", "ialu",  "imul", "cvt",
-                                                          "select", "fcmp", "shift", "icmp", "iselect"};
+// private_read, private_write: an element of a local array read or written at an index that is not a literal (the
+// dialect's arrayGet / arraySet; only the glints kernels have such arrays). lavapipe's gallivm lowers a read to a scalar
+// load per lane (lp_bld_nir_soa.c build_gather) and a write to a load, select and store per lane (emit_mask_scatter);
+// calibrate's private-array kernels measure both (read-only; read, add, write). A GPU keeps such an array in local
+// memory: its load/store units (the public-figure files).
+enum OpClass { kFAdd, kFMul, kIAlu, kIMul, kCvt, kSelect, kFCmp, kShift, kICmp, kISelect, kPrivateRead, kPrivateWrite, kOpClasses };
+inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd",  "fmul",  "ialu", "imul",    "cvt",          "select",
+                                                          "fcmp",  "shift", "icmp", "iselect", "private_read", "private_write"};
 /// Texture filters the model distinguishes (RGBA32F lookups).
 // uniform: a texelFetch at coordinates every lane of the invocation group shares (shade/prelude.h texelFetchUniform),
 // per lane.

@@ -17,6 +17,8 @@ OpClass classOf(opcount::Kind k) {
     case opcount::kShift: return kShift;
     case opcount::kICmp: return kICmp;
     case opcount::kISel: return kISelect;
+    case opcount::kPrivRead: return kPrivateRead;
+    case opcount::kPrivWrite: return kPrivateWrite;
     default: return kIAlu;  // integer ALU and mask logic
   }
 }

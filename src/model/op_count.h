@@ -19,11 +19,15 @@
 
 namespace opcount {
 
+// kPrivRead, kPrivWrite: a private (function-local) array read or written at an index that is not a literal (the
+// dialect's arrayGet / arraySet, shade/prelude.h): lavapipe's gallivm lowers each to a scalar load per lane, a store to
+// a load, select and store per lane; a GPU to local memory. Counted like the ALU kinds (per vector operation).
 enum Kind {
-  kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kShift, kICmp, kISel,
+  kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kShift, kICmp, kISel, kPrivRead, kPrivWrite,
   kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kTexLine, kTexMiss, kTexStreamMiss, kKinds
 };
-inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "shift", "icmp", "iselect", "tex_lookup", "texel",
+inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "shift", "icmp", "iselect",
+                                          "private_read", "private_write", "tex_lookup", "texel",
                                           "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform", "tex_line",
                                           "tex_miss", "tex_stream_miss"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
@@ -258,6 +262,15 @@ template <int N> inline LoopScope loopScope(F<N>) { return {}; }
 template <int N> inline M<N> specConstantMask(F<N>, bool b) {
   return M<N>(emu::Mask<N>(b), 0, !b && foldsSpecConstants);
 }
+
+// The dialect's arrayGet / arraySet (shade/prelude.h): the element read (ready one read after the element was) or the
+// value written (the write issues once the value is ready), each counted as one vector operation.
+template <int N> inline F<N> indexedRead(F<N> v) { return F<N>(v.x, op(kPrivRead, v.t)); }
+template <int N> inline I<N> indexedRead(I<N> v) { return I<N>(v.x, op(kPrivRead, v.t)); }
+template <int N> inline U<N> indexedRead(U<N> v) { return U<N>(v.x, op(kPrivRead, v.t)); }
+template <int N> inline F<N> indexedWrite(F<N> v) { return F<N>(v.x, op(kPrivWrite, v.t)); }
+template <int N> inline I<N> indexedWrite(I<N> v) { return I<N>(v.x, op(kPrivWrite, v.t)); }
+template <int N> inline U<N> indexedWrite(U<N> v) { return U<N>(v.x, op(kPrivWrite, v.t)); }
 
 template <int N> U<N>::U(I<N> a) : x(emu::U32<N>(a.x)), t(a.t) {}
 template <int N> U<N>::U(F<N> a) : x(emu::U32<N>(a.x)), t(op(kCvt, a.t)) {}

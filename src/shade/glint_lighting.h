@@ -29,11 +29,11 @@ struct GlintCoefs {
 };
 GlintCoefs glintColumnCoefs(Sampler2D coef, int order, int m) {
   GlintCoefs g;
-  FOR (int k = 1; k <= m; ++k) g.seed[k] = texelFetchUniform(coef, k, k, 0).x;
+  FOR (int k = 1; k <= m; ++k) arraySet(g.seed, k, texelFetchUniform(coef, k, k, 0).x);
   FOR (int l = m + 1; l <= order; ++l) {
     Float4 c = texelFetchUniform(coef, l, m, 0);
-    g.a[l - m] = c.x;
-    g.b[l - m] = c.y;
+    arraySet(g.a, l - m, c.x);
+    arraySet(g.b, l - m, c.y);
   }
   return g;
 }
@@ -43,7 +43,7 @@ GlintCoefs glintColumnCoefs(Sampler2D coef, int order, int m) {
 GlintColumn glintLightingColumn(Sampler2D env, Sampler2D dirs, Sampler2D coef, int envW, int y0, int y1, int level, int order,
                                 int m, Float3 wo) {
   GlintColumn col;
-  FOR (int i = 0; i < 6 * (kGlintMaxOrder + 1); ++i) col.c[i] = Float(0.0f);
+  FOR (int i = 0; i < 6 * (kGlintMaxOrder + 1); ++i) arraySet(col.c, i, Float(0.0f));
   GlintCoefs g = glintColumnCoefs(coef, order, m);
   float mScale = m == 0 ? 1.0f : 1.41421356f;  // sqrt(2) for the m > 0 pair
   FOR (int y = y0; y < y1; ++y) {
@@ -58,23 +58,23 @@ GlintColumn glintLightingColumn(Sampler2D env, Sampler2D dirs, Sampler2D coef, i
       ShLeg s = shLegSeed0();
       ShAzimuth az = ShAzimuth(Float(1.0f), Float(0.0f));
       FOR (int k = 1; k <= m; ++k) {
-        s = shLegSeedStep(s, g.seed[k], pol.sinT);
+        s = shLegSeedStep(s, arrayGet(g.seed, k), pol.sinT);
         az = shAzimuthNext(az, pol.cosP, pol.sinP);
       }
       PRECISE Float w = select(ok, d.w * mScale, Float(0.0f));
       PRECISE Float3 wl = Float3(L.x * w, L.y * w, L.z * w);
       FOR (int l = m; l <= order; ++l) {
-        if (l > m) s = shLegStep(s, g.a[l - m], g.b[l - m], Mask(l == m + 1), pol.z);
+        if (l > m) s = shLegStep(s, arrayGet(g.a, l - m), arrayGet(g.b, l - m), Mask(l == m + 1), pol.z);
         PRECISE Float p = shLegValue(s);
         PRECISE Float pc = p * az.c;
         PRECISE Float ps = p * az.s;
         int i = 6 * (l - m);
-        col.c[i + 0] = col.c[i + 0] + wl.x * pc;
-        col.c[i + 1] = col.c[i + 1] + wl.y * pc;
-        col.c[i + 2] = col.c[i + 2] + wl.z * pc;
-        col.c[i + 3] = col.c[i + 3] + wl.x * ps;
-        col.c[i + 4] = col.c[i + 4] + wl.y * ps;
-        col.c[i + 5] = col.c[i + 5] + wl.z * ps;
+        arraySet(col.c, i + 0, arrayGet(col.c, i + 0) + wl.x * pc);
+        arraySet(col.c, i + 1, arrayGet(col.c, i + 1) + wl.y * pc);
+        arraySet(col.c, i + 2, arrayGet(col.c, i + 2) + wl.z * pc);
+        arraySet(col.c, i + 3, arrayGet(col.c, i + 3) + wl.x * ps);
+        arraySet(col.c, i + 4, arrayGet(col.c, i + 4) + wl.y * ps);
+        arraySet(col.c, i + 5, arrayGet(col.c, i + 5) + wl.z * ps);
       }
     }
   }

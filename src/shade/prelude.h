@@ -20,6 +20,11 @@
 //     compiler unrolls a loop of a small literal count (plain `for`: exact_math's 26 and 27 steps, Philox's 10
 //     rounds) into straight-line code that runs (calibrate's branch kernels measure both), so the performance
 //     model counts an untaken block's straight-line code and unrolled loops, not its FOR loops.
+//   - A local array indexed by anything but a literal or the counter of a literal loop (a FOR loop's variable, a value
+//     computed from one) is read with arrayGet(a, i) and written with arraySet(a, i, v): GLSL a[i] and a[i] = v; the
+//     counting build counts them (private_read / private_write: a device without registers addressable by index pays
+//     per lane, lavapipe a scalar load per lane and a masked store per lane; docs/DESIGN.md §13). tests/dialect_test
+//     fails on a shared header that indexes a local array by a FOR loop's variable without them.
 #ifndef SHADE_PRELUDE_GLSL_DONE
 #ifdef GL_core_profile
 #define SHADE_PRELUDE_GLSL_DONE 1
@@ -91,6 +96,9 @@ vec2 textureSizeOf(sampler2DArray s) {
 }
 #define dot st_dot
 #define cross st_cross
+// A local array at a non-literal index (see the rules above).
+#define arrayGet(a, i) (a)[i]
+#define arraySet(a, i, v) (a)[i] = (v)
 
 uint mulHi(uint a, uint b) {
   uint hi;
@@ -155,6 +163,16 @@ inline Float4 texelFetchUniform(const Sampler2D& s, int x, int y, int level) {
   countUniformFetches(Float());
   const ::shadetwin::shade::V4<float> t = ::shadetwin::shade::texelFetchLanes(s, int32_t(x), int32_t(y), level);
   return Float4(Float(t.x), Float(t.y), Float(t.z), Float(t.w));
+}
+// A local array at a non-literal index (see the rules above): the element, counted by the counting build (indexedRead,
+// indexedWrite: model/op_count.h; nothing in the scalar and emulator builds).
+template <class T, size_t K>
+inline T arrayGet(const T (&a)[K], int i) {
+  return indexedRead(a[i]);
+}
+template <class T, size_t K, class V>
+inline void arraySet(T (&a)[K], int i, V v) {
+  a[i] = indexedWrite(T(v));
 }
 inline Float4 texelFetchLayer(const Sampler2DArray& s, Int x, Int y, Int layer, int level) {
   return ::shadetwin::shade::texelFetchLanes(s, x, y, level, layer);

@@ -102,9 +102,10 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
                        max(texelFetch2D(lighting, Int(0), view.v10, 0).w, texelFetch2D(lighting, Int(0), view.v11, 0).w));
   Int mstar = min(Int(k0.y), Int(lightMax));
   Float kl[kGlintShadeMaxOrder + 1];
-  FOR (int l = 0; l <= order; ++l) kl[l] = select(Int(l) <= mstar, texelFetch2D(mats, Int(6 + l), row, 0).x, Float(0.0f));
+  FOR (int l = 0; l <= order; ++l)
+    arraySet(kl, l, select(Int(l) <= mstar, texelFetch2D(mats, Int(6 + l), row, 0).x, Float(0.0f)));
   Float D[kGlintShadeCoeffs];
-  FOR (int i = 0; i < nc; ++i) D[i] = Float(0.0f);
+  FOR (int i = 0; i < nc; ++i) arraySet(D, i, Float(0.0f));
   int groups = int(s.sectors) / 8;
   FOR (int r = 0; r < int(s.rings); ++r) {
     Float4 slots = texelFetch2D(mats, Int(2 + r / 4), row, 0);
@@ -147,7 +148,7 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
                       if (j == 1) y = y4.y;
                       if (j == 2) y = y4.z;
                       if (j == 3) y = y4.w;
-                      D[i] = D[i] + w * (y * kl[l4]);
+                      arraySet(D, i, arrayGet(D, i) + w * (y * arrayGet(kl, l4)));
                     }
                   }
                 }
@@ -171,9 +172,9 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
                 FOR (int l = m; l <= order; ++l) {
                   IF_ANY(Int(l) <= mstar) {
                     if (l > m) sl = shLegNext(sl, coef, l, m, pol.z);
-                    PRECISE Float p = shLegValue(sl) * kl[l];
-                    D[l * l + l + m] = D[l * l + l + m] + wc * p;
-                    if (m > 0) D[l * l + l - m] = D[l * l + l - m] + ws * p;
+                    PRECISE Float p = shLegValue(sl) * arrayGet(kl, l);
+                    arraySet(D, l * l + l + m, arrayGet(D, l * l + l + m) + wc * p);
+                    if (m > 0) arraySet(D, l * l + l - m, arrayGet(D, l * l + l - m) + ws * p);
                   }
                 }
               }
@@ -189,7 +190,7 @@ Float4 shadeGlints(USampler2DArray sat, Sampler2D binDirs, Sampler2D mats, Sampl
     IF_ANY(Int(l) <= mstar) {  // D is 0 past M*: L * 0 adds +-0
       FOR (int i = l * l; i < (l + 1) * (l + 1); ++i) {
         Float4 L = glintGridLerp(lighting, i, view);
-        sum = sum + Float3(L.x, L.y, L.z) * D[i];
+        sum = sum + Float3(L.x, L.y, L.z) * arrayGet(D, i);
       }
     }
   }

@@ -29,6 +29,10 @@
 //   kind 17 icmp   u = mix(u + k, u ^ k, u < k)   1 integer compare + 1 integer select + 2 integer ALU (add, xor)
 //   kind 18 iselect u = mix(u + k, u ^ k, x < c), x = x + c   1 fcmp + 1 integer select + 2 integer ALU + 1 fadd
 //                 (the shared code's integer selects and compares: exact-math rounding, min/max, masks)
+//   kind 19 private read   x_k = x_k + a[i]: a local array of 256 floats read at 32 indices an iteration (the loop
+//                 counter's, not literals: (32 n + j) & 255), 1 private read + 1 fadd
+//   kind 20 private write  a[i] = a[i] + c at the same indices: 1 private read + 1 fadd + 1 private write (the glints
+//                 kernels' accumulation, shade/glint_lighting.h)
 // DEPENDENT (specialization constant 1) runs kinds 0-5 and 16-18 on one chain: time per step is the latency, not the
 // issue rate.
 #extension GL_GOOGLE_include_directive : require
@@ -79,6 +83,10 @@ layout(push_constant) uniform Push {
     for (uint n = 0u; n < pc.iters; ++n) { STEPS_INDEP(OP) }                   \
   }
 #define YADD(k) y = y + pc.c;
+// Private-array steps (kinds 19, 20): index b + o + k of chain k.
+#define PRIVREAD(o, k) x##k = x##k + a[b + o + uint(k)];
+#define PRIVRMW(o, k) a[b + o + uint(k)] = a[b + o + uint(k)] + pc.c;
+#define PRIV8(OP, o) OP(o, 0) OP(o, 1) OP(o, 2) OP(o, 3) OP(o, 4) OP(o, 5) OP(o, 6) OP(o, 7)
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -120,6 +128,21 @@ void main() {
     }
   } else if (KIND == 14u) {  // texelFetch at coordinates every lane shares (a table row: shade/prelude.h texelFetchUniform)
     for (uint n = 0u; n < pc.iters; ++n) acc += texelFetch(tex, ivec2(int(n & 7u), int((n >> 3u) & 7u)), 0);
+  } else if (KIND == 19u || KIND == 20u) {
+    // The indices are uniform (every lane's the same, as the glints kernels' loop counters) and differ within an
+    // iteration, so no read of an iteration is the same as another (nothing to share), and the loop is not unrolled
+    // (pc.iters): each access is one at a run-time index.
+    float a[256];
+    for (int k = 0; k < 256; ++k) a[k] = x0 + float(k & 7);
+    for (uint n = 0u; n < pc.iters; ++n) {
+      const uint b = (n * 32u) & 255u;
+      if (KIND == 19u) {
+        PRIV8(PRIVREAD, 0u) PRIV8(PRIVREAD, 8u) PRIV8(PRIVREAD, 16u) PRIV8(PRIVREAD, 24u)
+      } else {
+        PRIV8(PRIVRMW, 0u) PRIV8(PRIVRMW, 8u) PRIV8(PRIVRMW, 16u) PRIV8(PRIVRMW, 24u)
+      }
+    }
+    if (KIND == 20u) acc.w += a[i & 255u] + a[(i + 77u) & 255u];
   } else if (KIND == 9u) {  // window: independent iterations, each one dependent chain of 64 fadds
     for (uint n = 0u; n < pc.iters; ++n) {
       float y = x0 + float(n);
