@@ -5,12 +5,61 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 
 namespace shadetwin {
 
 namespace {
+// OpenEXR 3.1 (Debian's, under OpenImageIO) allocates each header attribute's value at the size the header claims
+// before it reads the value: a 1 KiB file that claims a 1.2 GiB string costs that much memory and, under a sanitizer,
+// seconds to free (fuzz_image found one; fuzz/regressions/image/exr_attribute_size_past_end). So an EXR's headers are
+// walked first, and an attribute that claims more bytes than the file has left is an error naming it. The layout
+// (OpenEXR's "File Layout" document): magic 76 2f 31 01, a 4-byte version whose bit 10 allows names of 255 bytes (31
+// otherwise) and bit 12 marks a multi-part file; then each header is attributes (name NUL, type NUL, int32 size,
+// value) ended by an empty name, and a multi-part file's headers are ended by an empty header.
+void checkExrHeaders(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  unsigned char head[8];
+  if (!f.read(reinterpret_cast<char*>(head), 8)) return;  // too short to be an EXR: OpenImageIO says what it is
+  static constexpr unsigned char kMagic[4] = {0x76, 0x2f, 0x31, 0x01};
+  if (std::memcmp(head, kMagic, 4) != 0) return;
+  const uint32_t flags = uint32_t(head[5]) << 8 | uint32_t(head[6]) << 16 | uint32_t(head[7]) << 24;
+  const size_t maxName = flags & 0x400u ? 255 : 31;
+  const bool multipart = (flags & 0x1000u) != 0;
+  f.seekg(0, std::ios::end);
+  const int64_t fileSize = int64_t(f.tellg());
+  f.seekg(8);
+  auto readString = [&](const char* what) {
+    std::string s;
+    for (int c; (c = f.get()) != 0;) {
+      if (c == EOF) throw FileError(path + ": EXR header ends inside an attribute's " + std::string(what));
+      if (s.size() == maxName) throw FileError(path + ": EXR attribute " + what + " longer than " + std::to_string(maxName) + " bytes");
+      s.push_back(char(c));
+    }
+    return s;
+  };
+  for (;;) {
+    int attributes = 0;
+    for (;; ++attributes) {
+      const std::string name = readString("name");
+      if (name.empty()) break;
+      const std::string type = readString("type");
+      unsigned char sz[4];
+      if (!f.read(reinterpret_cast<char*>(sz), 4)) throw FileError(path + ": EXR header ends inside attribute " + name);
+      const int32_t size = int32_t(uint32_t(sz[0]) | uint32_t(sz[1]) << 8 | uint32_t(sz[2]) << 16 | uint32_t(sz[3]) << 24);
+      const int64_t left = fileSize - int64_t(f.tellg());
+      if (size < 0 || size > left)
+        throw FileError(path + ": EXR attribute " + name + " (" + type + ") claims " + std::to_string(size) +
+                        " bytes, the file has " + std::to_string(left) + " left");
+      f.seekg(size, std::ios::cur);
+    }
+    if (!multipart || attributes == 0) return;  // a single header, or the empty header that ends a multi-part file's
+  }
+}
+
 // The file opened for reading, its header checked (present, readable, not empty).
 std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
   namespace fs = std::filesystem;
@@ -18,6 +67,7 @@ std::unique_ptr<OIIO::ImageInput> openImage(const std::string& path) {
     std::string hint = path.find("assets/") != std::string::npos ? " (run scripts/setup.sh to fetch the assets)" : "";
     throw FileError(path + ": file not found" + hint);
   }
+  checkExrHeaders(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw FileError(path + ": cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
