@@ -137,6 +137,15 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
     const size_t at = s.rfind("\"fragments_per_second\": ") + 24;
     s.replace(at, s.find(',', at) - at, "0");
     EXPECT_NE(errorOf(s).find("'raster.gbuffer.fragments_per_second' must be positive"), std::string::npos);
+    s = good;  // session 34's key: a file without it (older calibrations) is refused by name, a negative cost too
+    const size_t sp = s.find("\"spanning_triangle_seconds\": ");
+    ASSERT_NE(sp, std::string::npos);
+    s.erase(sp, s.find('\n', sp) + 1 - sp);
+    EXPECT_NE(errorOf(s).find("spanning_triangle_seconds"), std::string::npos) << errorOf(s);
+    s = good;
+    const size_t v = s.rfind("\"spanning_triangle_seconds\": ") + 29;
+    s.replace(v, s.find(',', v) - v, "-1e-9");
+    EXPECT_NE(errorOf(s).find("'raster.gbuffer.spanning_triangle_seconds' must be a number >= 0"), std::string::npos) << errorOf(s);
   }
   EXPECT_NE(errorOf(replaced("\"verified\": false", "\"verified\": 0")).find("'verified' must be true or false"),
             std::string::npos);

@@ -77,6 +77,24 @@ TEST(Model, OutsideTrianglesAndFurtherDrawsCostTheirPipelinesRates) {
   EXPECT_DOUBLE_EQ(predict(c, device(false)).launchSeconds, 5 * 1e-4 + 1 * 0.0);
 }
 
+// A set-up triangle whose extent holds a pixel-centre row costs its pipeline's spanning_triangle_seconds on top of the
+// set-up rate (a rasterizer bins and walks it; one that spans no row it drops after set-up); an outside triangle is
+// never a spanning one, and a count above the set-up triangles is capped at them.
+TEST(Model, TrianglesSpanningARowCostTheirPipelinesExtra) {
+  PassCounts c;
+  c.triangles = 1000, c.outsideTriangles = 100, c.spanningTriangles = 700, c.rasterPipeline = kDepthOnly;
+  DeviceDesc d = device(false);
+  d.raster[kDepthOnly].outsideTriangleSeconds = 1e-9;
+  const double without = predict(c, d).rasterSeconds;
+  EXPECT_DOUBLE_EQ(without, 900.0 / d.raster[kDepthOnly].trianglesPerSecond + 100 * 1e-9);
+  d.raster[kDepthOnly].spanningTriangleSeconds = 7e-8;
+  EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, without + 700 * 7e-8);
+  c.spanningTriangles = 5000;  // more than the 900 set up: capped
+  EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, without + 900 * 7e-8);
+  d.raster[kGbufferRaster].spanningTriangleSeconds = 1.0;  // another pipeline's cost does not apply
+  EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, without + 900 * 7e-8);
+}
+
 TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   PassCounts c;
   c.dispatches = 1;

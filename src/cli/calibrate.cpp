@@ -444,7 +444,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
        // same targets as each. The emulator under the device's profile counts their triangles and covered pixels; each
        // empty run's time is removed, and the two equations give the two rates.
       const emu::DeviceProfile& prof = emu::profileForDevice(ctx.deviceName());
-      struct Run { double seconds, triangles, fragments, vertexRuns, outside; };
+      struct Run { double seconds, triangles, fragments, vertexRuns, outside, spanning; };
       auto sceneOf = [](Mesh mesh, uint32_t objects) {  // `objects` draws of the mesh, in place
         Scene sc;
         sc.meshes.push_back(std::move(mesh));
@@ -467,7 +467,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         shadowEmu(sc, dirs, size, prof, &st);
         return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
                    double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * maps * objects,
-                   double(st.raster.trianglesOutside)};
+                   double(st.raster.trianglesOutside), double(st.raster.trianglesSpanning)};
       };
       auto gbufferRun = [&](Mesh mesh, uint32_t size, uint32_t draws) {
         Scene sc = sceneOf(std::move(mesh), draws);
@@ -479,7 +479,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         gbufferEmu(sc, prof, &st);
         return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
                    double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * draws,
-                   double(st.raster.trianglesOutside)};
+                   double(st.raster.trianglesOutside), double(st.raster.trianglesSpanning)};
       };
       auto flat = [](Mesh m) {  // every vertex at the centre: zero-area triangles, the same bounds as a point
         for (auto& p : m.positions) p = {0.0f, 0.0f, 0.0f};
@@ -495,8 +495,11 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       // coverage-bound run and its empty run; targetBytes: the bytes of b's targets (cleared and copied out).
       // o: a's mesh out of the view (every triangle outside a clip plane; for the depth-only pipeline, whose maps enclose
       // the scene, a's own run: no triangle is outside); eMany, eFew: two empty runs that differ by `draws` draws.
+      // m, m0: a's mesh into medium targets, where most of its triangles span a pixel-centre row (in a's 32^2 or 64^2
+      // targets most do not: the rasterizer drops them after set-up), and its empty run.
       auto rates = [&](const char* name, const Run& a, const Run& s, const Run& a0, const Run& b, const Run& b0,
-                       double targetBytes, const Run& o, const Run& eMany, const Run& eFew, double draws) {
+                       double targetBytes, const Run& o, const Run& eMany, const Run& eFew, double draws, const Run& m,
+                       const Run& m0) {
         // A vertex routine run: the time a and s differ by, over the runs they differ by (0 where not simulated). The
         // triangle-bound equation below uses s, whose runs are the fewer (a noisy a - s moves it least), and the runs
         // never take more than three quarters of s's time (a contended run of a once left no time for the triangles).
@@ -506,15 +509,37 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         sv = std::min(sv, 0.75 * std::max(tsRaw, 0.0) / std::max(s.vertexRuns - a0.vertexRuns, 1.0));
         const double ta = std::max(tsRaw - sv * (s.vertexRuns - a0.vertexRuns), 1e-9),
                      tb = std::max(b.seconds - b0.seconds - sv * (b.vertexRuns - b0.vertexRuns), 1e-9);
-        // ta = s.triangles s_t + s.fragments s_f, the same for b: Cramer's rule, each cost kept positive.
-        const double det = s.triangles * b.fragments - b.triangles * s.fragments;
-        double st = (ta * b.fragments - tb * s.fragments) / det, sf = (s.triangles * tb - b.triangles * ta) / det;
-        if (!(st > 0)) st = ta / s.triangles;
-        if (!(sf > 0)) sf = tb / b.fragments;
-        out << "  raster    " << name << ": " << s.triangles << " triangles + " << s.fragments << " pixels in " << ta * 1e3
-            << " ms; " << b.triangles << " triangles + " << b.fragments << " pixels in " << tb * 1e3 << " ms; empty targets "
-            << a0.seconds * 1e3 << " / " << b0.seconds * 1e3 << " ms: " << st * 1e9 << " ns per triangle, " << sf * 1e9
-            << " ns per pixel";
+        const double tm = std::max(m.seconds - m0.seconds - sv * (m.vertexRuns - m0.vertexRuns), 1e-9);
+        // t = triangles s_t + spanning s_s + fragments s_f for s, m and b: Cramer's rule on the 3x3 system; where a cost
+        // comes out non-positive (noise), the two-run solution without s_s (s and b), as before session 34.
+        auto det3 = [](const double (&r)[3][3]) {
+          return r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
+                 r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+        };
+        const double A[3][3] = {{s.triangles, s.spanning, s.fragments}, {m.triangles, m.spanning, m.fragments},
+                                {b.triangles, b.spanning, b.fragments}};
+        const double rhs[3] = {ta, tm, tb};
+        double x[3];
+        const double D = det3(A);
+        for (int k = 0; k < 3; ++k) {
+          double Ak[3][3];
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) Ak[i][j] = j == k ? rhs[i] : A[i][j];
+          x[k] = det3(Ak) / D;
+        }
+        double st = x[0], ss = x[1], sf = x[2];
+        if (!(st > 0 && ss >= 0 && sf > 0)) {
+          const double det = s.triangles * b.fragments - b.triangles * s.fragments;
+          st = (ta * b.fragments - tb * s.fragments) / det, sf = (s.triangles * tb - b.triangles * ta) / det, ss = 0.0;
+          if (!(st > 0)) st = ta / s.triangles;
+          if (!(sf > 0)) sf = tb / b.fragments;
+        }
+        out << "  raster    " << name << ": " << s.triangles << " triangles (" << s.spanning << " spanning) + " << s.fragments
+            << " pixels in " << ta * 1e3 << " ms; " << m.triangles << " triangles (" << m.spanning << " spanning) + "
+            << m.fragments << " pixels in " << tm * 1e3 << " ms; " << b.triangles << " triangles + " << b.fragments
+            << " pixels in " << tb * 1e3 << " ms; empty targets " << a0.seconds * 1e3 << " / " << m0.seconds * 1e3 << " / "
+            << b0.seconds * 1e3 << " ms: " << st * 1e9 << " ns per triangle, " << ss * 1e9 << " ns more per spanning one, "
+            << sf * 1e9 << " ns per pixel";
         if (d.vertexCache.entries)
           out << "; vertex runs " << a.vertexRuns << " in " << a.seconds * 1e3 << " ms vs " << s.vertexRuns << " strip-numbered in "
               << s.seconds * 1e3 << " ms: " << sv * 1e9 << " ns per run (excluded above)";
@@ -528,7 +553,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
             << " ms beyond the empty run: " << so * 1e9 << " ns per triangle; " << draws << " more empty draws "
             << (eMany.seconds - eFew.seconds) * 1e3 << " ms: " << sd * 1e6 << " us per draw\n";
         // The targets' clear + copy-out per byte (the large empty run less a launch).
-        return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv, so, sd};
+        return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv, so, sd, ss};
       };
       const uint32_t segs = opts.quick ? 128 : 256, rings = opts.quick ? 64 : 128;
       const Mesh sphere = makeSphere(segs, rings), strips = makeSphereStrips(segs, rings, 8);
@@ -539,8 +564,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         const Run b = depthRun(makePlane(), big, bigMaps), b0 = depthRun(flat(makePlane()), big, bigMaps);
         const uint32_t objects = 16;  // empty draws a map, against a0's one
         const Run e16 = depthRun(flat(makePlane()), small, smallMaps, objects);
+        const uint32_t medium = opts.quick ? 256 : 512;  // ~6 pixels a triangle: most span a row
+        const Run m = depthRun(sphere, medium, smallMaps), m0 = depthRun(flat(makePlane()), medium, smallMaps);
         d.raster[model::kDepthOnly] = rates("depth-only", a, s, a0, b, b0, double(big) * big * 4 * bigMaps, a, e16, a0,
-                                            double(objects - 1) * smallMaps);
+                                            double(objects - 1) * smallMaps, m, m0);
       }
       {
         const uint32_t small = 64, draws = opts.quick ? 4 : 16, big = opts.quick ? 512 : 1024, bigDraws = 4;
@@ -550,8 +577,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         Mesh away = sphere;  // the camera looks down -y at x, z in about [-1.2, 1.2]: 10 to the side is out of view
         for (auto& p : away.positions) p[0] += 10.0f;
         const Run o = gbufferRun(away, small, draws), e1 = gbufferRun(flat(makePlane()), small, 1);
-        d.raster[model::kGbufferRaster] =
-            rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4), o, a0, e1, double(draws - 1));
+        const uint32_t medium = opts.quick ? 256 : 512;
+        const Run m = gbufferRun(sphere, medium, draws), m0 = gbufferRun(flat(makePlane()), medium, draws);
+        d.raster[model::kGbufferRaster] = rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4), o, a0,
+                                                e1, double(draws - 1), m, m0);
       }
     }
     d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +

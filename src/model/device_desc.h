@@ -44,10 +44,16 @@ inline constexpr const char* kRasterPipelineNames[kRasterPipelines] = {"depth_on
 // triangle-bound mesh moved out of the view; lavapipe 2026-12: ~0 against ~130 ns a triangle set up).
 // drawSeconds: a draw beyond the pass's first in the same submission (calibrate: 16 empty draws against 1), where the
 // submission itself is one dispatchSeconds.
+// spanningTriangleSeconds: what a set-up triangle whose extent holds a pixel-centre row (emu RasterStats
+// trianglesSpanning) costs beyond one that holds none, which a rasterizer drops after set-up without binning or
+// walking it (calibrate: the triangle-bound sphere into targets where its triangles span rows, against the same sphere
+// into 32^2 ones, where most do not; lavapipe 2026-12: the bunny's shadow maps cost ~0.22 us a triangle against
+// calibrate's ~0.07 us from the 32^2 run alone).
 struct RasterRates {
   double trianglesPerSecond = 0.0, fragmentsPerSecond = 0.0, targetBytesPerSecond = 0.0;
   double vertexRunSeconds = 0.0;
   double outsideTriangleSeconds = 0.0, drawSeconds = 0.0;
+  double spanningTriangleSeconds = 0.0;
 };
 
 /// A driver's post-transform vertex cache, as the model simulates it over each draw's index stream

@@ -65,6 +65,7 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
   const uint64_t outside = std::min(c.outsideTriangles, c.triangles);
   p.rasterSeconds = double(c.triangles - outside) / r.trianglesPerSecond + double(outside) * r.outsideTriangleSeconds +
+                    double(std::min(c.spanningTriangles, c.triangles - outside)) * r.spanningTriangleSeconds +
                     double(c.fragments) / r.fragmentsPerSecond +
                     double(c.attachmentBytes) / r.targetBytesPerSecond + double(c.vertexRuns) * r.vertexRunSeconds;
   const uint64_t groups = c.triangles ? 0 : c.workgroups ? c.workgroups : (c.invocations + 63) / 64;
