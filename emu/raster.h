@@ -78,6 +78,12 @@ struct Framebuffer {
 struct RasterStats {
   size_t trianglesIn = 0, trianglesClipped = 0, trianglesCulled = 0, quads = 0, fragments = 0, trianglesSpanning = 0;
   size_t trianglesOutside = 0;
+  /// Several draws' statistics as one (every field: a pass that sums them field by field once left two out).
+  RasterStats& operator+=(const RasterStats& o) {
+    trianglesIn += o.trianglesIn, trianglesClipped += o.trianglesClipped, trianglesCulled += o.trianglesCulled;
+    quads += o.quads, fragments += o.fragments, trianglesSpanning += o.trianglesSpanning, trianglesOutside += o.trianglesOutside;
+    return *this;
+  }
 };
 
 /// Rasterizes one draw into `fb` (depth test less-or-equal with depth writes), running `fs` on every

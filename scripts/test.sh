@@ -9,7 +9,7 @@ bash scripts/setup.sh
 # Transparent huge pages for glibc's heap (and the Vulkan drivers', which allocate through it): on the VMs CI and this
 # project run on, a page fault costs microseconds, and a verify frame touches ~1 GB of fresh memory (16 shadow maps of
 # 1024², their array textures, readbacks): 200,000 faults become 20,000 and the frame runs 2-3x faster (RESULTS,
-# "Huge pages"). No bit changes: only where the memory comes from.
+# "Session 34"). No bit changes: only where the memory comes from.
 export GLIBC_TUNABLES=${GLIBC_TUNABLES:+$GLIBC_TUNABLES:}glibc.malloc.hugetlb=1
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j"$(nproc)"

@@ -124,10 +124,7 @@ void shadowLanes(const Scene& scene, const std::vector<Vec3>& directions, uint32
     *stats = {};
     for (auto& s : per) {
       stats->vertexMs += s.vertexMs, stats->rasterMs += s.rasterMs;
-      stats->raster.trianglesIn += s.raster.trianglesIn, stats->raster.trianglesClipped += s.raster.trianglesClipped;
-      stats->raster.trianglesCulled += s.raster.trianglesCulled, stats->raster.quads += s.raster.quads;
-      stats->raster.fragments += s.raster.fragments;
-      stats->raster.trianglesSpanning += s.raster.trianglesSpanning, stats->raster.trianglesOutside += s.raster.trianglesOutside;
+      stats->raster += s.raster;
     }
   }
 }
