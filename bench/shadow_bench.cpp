@@ -10,6 +10,7 @@
 #include "passes/passes_vk.h"
 #include "passes/shadow.h"
 #include "scene/scene.h"
+#include "util/memory.h"
 #include "vk/context.h"
 
 namespace {
@@ -53,4 +54,11 @@ BENCHMARK(BM_ShadowEmu)->Apply(shapes)->UseRealTime();
 BENCHMARK(BM_ShadowVulkan)->Apply(shapes)->UseManualTime();
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  shadetwin::keepHeapAcrossFrames();  // as the CLI: lavapipe's freed frame memory stays in the heap (util/memory.h)
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

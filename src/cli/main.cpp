@@ -19,6 +19,7 @@
 #include "cli/render.h"
 #include "scene/scene.h"
 #include "cli/verify/verify.h"
+#include "util/memory.h"
 #include "util/output_file.h"
 #include "vk/context.h"
 
@@ -62,6 +63,7 @@ void addSceneOptions(CLI::App* cmd, std::string& scene, shadetwin::SceneOverride
 
 int main(int argc, char** argv) {
   shadetwin::installInterruptCleanup();  // SIGINT / SIGTERM remove every output's temporary (util/output_file.h)
+  shadetwin::keepHeapAcrossFrames();     // before any driver allocates: freed frame memory stays in the heap
   CLI::App app{"shadetwin: a bit-exact CPU twin of a Vulkan image-based-lighting renderer"};
   app.require_subcommand(1);
   unsigned threads = 0;

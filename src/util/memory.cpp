@@ -1,6 +1,9 @@
 #include "util/memory.h"
 
 #include <sys/resource.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <cctype>
@@ -119,6 +122,18 @@ void checkMemoryBudget(const std::string& file, const std::vector<MemoryNeed>& n
 
 void checkMemoryBudget(const std::string& file, const std::vector<MemoryNeed>& needs) {
   checkMemoryBudget(file, needs, memoryBudget());
+}
+
+bool keepHeapAcrossFrames() {
+#if defined(__GLIBC__)
+  // mallopt returns 1 when it took the setting. An explicit M_MMAP_THRESHOLD also turns off glibc's dynamic threshold,
+  // which would otherwise set the trim threshold back to twice the largest mmapped block freed.
+  const bool trim = mallopt(M_TRIM_THRESHOLD, 0x7fffffff) == 1;  // mallopt takes an int: 2 GiB - 1
+  const bool mmap = mallopt(M_MMAP_THRESHOLD, 32 << 20) == 1;
+  return trim && mmap;
+#else
+  return false;
+#endif
 }
 
 }  // namespace shadetwin

@@ -28,6 +28,16 @@ double peakResidentBytes();
 /// The process's resident set now (VmRSS), bytes; 0 when unknown.
 double residentBytes();
 
+/// The heap policy of a process that renders frame after frame (the CLI calls it first; docs/RESULTS.md session 35).
+/// By default glibc hands the free memory at the top of a heap back to the kernel once it passes 128 KiB
+/// (M_TRIM_THRESHOLD, also per thread arena) and serves blocks from 128 KiB up by mmap, so a Vulkan driver that
+/// allocates a frame's bins and vertex buffers and frees them at the end (lavapipe) touches fresh pages in every frame,
+/// and on a VM where a page fault costs microseconds those faults were most of a small G-buffer pass (64x48 bunny
+/// 1.20 ms, 0.71 ms with this policy). Here the heap keeps what it has (trim threshold 2 GiB) and blocks below 32 MiB
+/// (glibc's largest dynamic threshold) come from the heap. Returns false where the allocator refused a setting (a
+/// sanitizer's allocator, another libc): the process then runs with its allocator's defaults.
+bool keepHeapAcrossFrames();
+
 /// The needs' sum, bytes.
 double totalBytes(const std::vector<MemoryNeed>& needs);
 
