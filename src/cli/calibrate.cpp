@@ -528,6 +528,20 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
           x[k] = det3(Ak) / D;
         }
         double st = x[0], ss = x[1], sf = x[2];
+        // A triangle in view does all that one outside a clip plane does (fetch, vertex routine, clip) and more: where
+        // the solution prices a set-up below an outside triangle (lavapipe's G-buffer, whose set-ups without a row are
+        // nearly free beside its spanning ones), the set-up is the outside cost and the spanning and pixel costs come
+        // from m and b (the runs with the most of each).
+        const double outsideCost = o.outside > 0.5 * o.triangles
+                                       ? (o.seconds - a0.seconds - sv * (o.vertexRuns - a0.vertexRuns)) / o.outside : 0.0;
+        if (st > 0 && st < outsideCost && ss >= 0 && sf > 0) {
+          st = outsideCost;
+          const double rm = tm - st * m.triangles, rb = tb - st * b.triangles;
+          const double det = m.spanning * b.fragments - b.spanning * m.fragments;
+          const double ss2 = (rm * b.fragments - rb * m.fragments) / det, sf2 = (m.spanning * rb - b.spanning * rm) / det;
+          if (ss2 >= 0 && sf2 > 0) ss = ss2, sf = sf2;
+          else st = x[0];  // noise: keep the 3x3 solution
+        }
         if (!(st > 0 && ss >= 0 && sf > 0)) {
           const double det = s.triangles * b.fragments - b.triangles * s.fragments;
           st = (ta * b.fragments - tb * s.fragments) / det, sf = (s.triangles * tb - b.triangles * ta) / det, ss = 0.0;
@@ -570,17 +584,22 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
                                             double(objects - 1) * smallMaps, m, m0);
       }
       {
+        // The triangle-bound runs draw the sphere once (65k triangles; --quick 16k): a G-buffer pass is one render pass,
+        // and lavapipe bins a render pass's triangles into one scene until the scene is full (~150k of these), then
+        // rasterizes it on the workers while the next one is binned. Sixteen draws (1M triangles) overlapped binning
+        // and rasterizing and read 88 ns a triangle where a single draw, as large as any shipped scene's pass, reads
+        // 170-240 (docs/RESULTS.md session 35). The draw cost comes from empty runs of `draws` draws against one.
         const uint32_t small = 64, draws = opts.quick ? 4 : 16, big = opts.quick ? 512 : 1024, bigDraws = 4;
-        const Run a = gbufferRun(sphere, small, draws), a0 = gbufferRun(flat(makePlane()), small, draws);
-        const Run s = d.vertexCache.entries ? gbufferRun(strips, small, draws) : a;
+        const Run a = gbufferRun(sphere, small, 1), a0 = gbufferRun(flat(makePlane()), small, 1);
+        const Run s = d.vertexCache.entries ? gbufferRun(strips, small, 1) : a;
         const Run b = gbufferRun(makePlane(), big, bigDraws), b0 = gbufferRun(flat(makePlane()), big, bigDraws);
         Mesh away = sphere;  // the camera looks down -y at x, z in about [-1.2, 1.2]: 10 to the side is out of view
         for (auto& p : away.positions) p[0] += 10.0f;
-        const Run o = gbufferRun(away, small, draws), e1 = gbufferRun(flat(makePlane()), small, 1);
+        const Run o = gbufferRun(away, small, 1), eMany = gbufferRun(flat(makePlane()), small, draws);
         const uint32_t medium = opts.quick ? 256 : 512;
-        const Run m = gbufferRun(sphere, medium, draws), m0 = gbufferRun(flat(makePlane()), medium, draws);
-        d.raster[model::kGbufferRaster] = rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4), o, a0,
-                                                e1, double(draws - 1), m, m0);
+        const Run m = gbufferRun(sphere, medium, 1), m0 = gbufferRun(flat(makePlane()), medium, 1);
+        d.raster[model::kGbufferRaster] = rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4), o,
+                                                eMany, a0, double(draws - 1), m, m0);
       }
     }
     d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +
