@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "model/pass_counts.h"
 #include "passes/mips.h"
 
 using shadetwin::mipChainCpu;
@@ -52,6 +53,25 @@ TEST(Mips, ChainShapesAndScalarSimdAgree) {
   ASSERT_EQ(a.size(), 6u);  // 37x13, 18x6, 9x3, 4x1, 2x1, 1x1
   EXPECT_EQ(a[3].size(), size_t(4) * 1 * 2 * 4);
   EXPECT_EQ(a, b);
+}
+
+// The counted chain (the performance model's, lanes 0) does what every invocation of mip_downsample.glsl does: both
+// axes' taps per 8-texel vector, none hoisted out of a row. A 256x2 source's first level is 16 vectors in one row, a
+// 16x32 source's 16 vectors in 16 rows, and the rest of each chain is that of 128x2 and 8x16: the two first levels
+// count the same. (With the row's taps hoisted out of the row, the one-row level counted 17 tap computations where
+// the GPU runs 32: 51 of its 96 exact divisions; measured 10,686 ticks against 18,336.)
+TEST(Mips, CountedChainComputesBothAxesTapsPerVectorAsTheShaderDoes) {
+  auto ticks = [](uint32_t w, uint32_t h) {
+    std::vector<float> img(size_t(w) * h * 4);
+    std::iota(img.begin(), img.end(), 1.0f);
+    const auto t = shadetwin::model::countedTicks([&] { mipChainCpu(img, w, h, 1, 0); });
+    uint64_t alu = 0;
+    for (int k = 0; k < opcount::kTexLookup; ++k) alu += t[size_t(k)];
+    return alu;
+  };
+  const uint64_t oneRow = ticks(256, 2) - ticks(128, 2), sixteenRows = ticks(16, 32) - ticks(8, 16);
+  EXPECT_GT(oneRow, 16u * 300u);  // two tap computations (6 exact divisions) and four combines per vector
+  EXPECT_EQ(oneRow, sixteenRows);
 }
 
 TEST(Mips, BadInputIsNamed) {

@@ -159,6 +159,40 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   EXPECT_DOUBLE_EQ(predict(raster, rd).rasterSeconds, 4e-3 + 3e-2 + 2.5e-2);
 }
 
+// A workgroup runs on one core (GPU: one SM): a compute pass of fewer workgroups than cores has only that many busy,
+// so its ALU, texture and (software device) buffer terms take cores / workgroups as long as the rates of all cores
+// say; the launch and raster terms do not change (the SH reduction: one workgroup of 16 invocations).
+TEST(Model, AComputePassOfFewerWorkgroupsThanCoresRunsOnThatMany) {
+  PassCounts c;
+  c.dispatches = 1, c.invocations = 16, c.workgroups = 1;
+  c.ops[opcount::kFMul] = 1e6;             // 1 ms at 1e9/s on every core
+  c.ops[opcount::kTexNearest] = 400000;    // 1 ms at 4e8/s
+  c.bytesRead = 10000000;                  // 1 ms at 1e10 B/s
+  DeviceDesc d = device(false);
+  d.cores = 4;
+  const Prediction one = predict(c, d);
+  EXPECT_DOUBLE_EQ(one.aluSeconds, 4e-3);
+  EXPECT_DOUBLE_EQ(one.textureSeconds, 4e-3);
+  EXPECT_DOUBLE_EQ(one.memorySeconds, 4e-3);
+  EXPECT_DOUBLE_EQ(one.launchSeconds, 1e-4);
+  c.workgroups = 2;
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 2e-3);
+  c.workgroups = 0, c.invocations = 64 * 4;  // one per 64 invocations when not counted: every core busy
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 1e-3);
+  c.workgroups = 1000;
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 1e-3);
+  c.workgroups = 1, c.scheduledSeconds = 8e-3;  // one core's scheduled time, on the one busy core
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 8e-3);
+  c.scheduledSeconds = 0;
+  DeviceDesc g = device(true);  // a GPU: one SM's ALU and texture units; the memory system is not the SM's
+  g.cores = 4;
+  EXPECT_DOUBLE_EQ(predict(c, g).aluSeconds, 4e-3);
+  EXPECT_DOUBLE_EQ(predict(c, g).memorySeconds, 1e-3);
+  PassCounts raster;  // raster passes bin over every core
+  raster.dispatches = 1, raster.triangles = 20000, raster.ops[opcount::kFMul] = 1e6;
+  EXPECT_DOUBLE_EQ(predict(raster, d).aluSeconds, 1e-3);
+}
+
 TEST(Model, IntegerComparesAndSelectsAreCostedAtTheirOwnRates) {
   PassCounts c;
   std::array<uint64_t, opcount::kKinds> t{};

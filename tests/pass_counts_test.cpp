@@ -121,6 +121,13 @@ TEST(PassCounts, RasterAndComputeShapes) {
     if (p.pass == "paraboloid" || p.pass == "sh-project" || p.pass == "sh-reduce") {
       EXPECT_EQ(p.pipelines, 1u) << p.pass;
     }
+    if (p.pass == "sh-reduce") {  // sh_reduce.comp: one workgroup of 16; the tree's reads and in-place writes
+      const uint64_t rows = env.texture->height();
+      EXPECT_EQ(p.workgroups, 1u);
+      EXPECT_EQ(p.bytesRead, rows * 256);
+      EXPECT_EQ(p.bytesRead + p.bytesReread, (2 * (rows - 1) + 1) * 256);
+      EXPECT_EQ(p.bytesWritten, rows * 256);
+    }
     if (p.pass == "mips") {
       EXPECT_EQ(p.pipelines, 1u);  // bunny: the atlas's chain only (no material maps)
       // 9 vec4 loads per texel of each level (mip_downsample.glsl's 3x3 footprint), of which bytesRead holds the

@@ -50,25 +50,35 @@ CoreModel coreModel(const DeviceDesc& d) {
 Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   Prediction p;
   const auto ops = scalarOps(c);
+  const uint64_t groups = c.triangles ? 0 : c.workgroups ? c.workgroups : (c.invocations + 63) / 64;
+  // A compute pass runs its workgroups on the cores (GPU: SMs), a workgroup on one: with fewer workgroups than cores
+  // only that many are busy, and the rates, which are every core's together, shrink to theirs (the SH reduction's one
+  // workgroup of 16 invocations runs on one of lavapipe's threads). Raster passes spread their bins over every core.
+  const double busy = groups ? double(std::min<uint64_t>(groups, uint64_t(std::max(d.cores, 1)))) : double(std::max(d.cores, 1));
+  const double spread = double(std::max(d.cores, 1)) / busy;
   for (int k = 0; k < kOpClasses; ++k) p.aluSeconds += ops[size_t(k)] / d.opsPerSecond[size_t(k)];
-  // Scheduled on the device's core model: that time, over the cores (never below the issue-rate sum above).
-  if (!d.unitsOverlap && c.scheduledSeconds > 0) p.aluSeconds = std::max(p.aluSeconds, c.scheduledSeconds / double(d.cores));
+  p.aluSeconds *= spread;
+  // Scheduled on the device's core model: that time, over the busy cores (never below the issue-rate sum above).
+  if (!d.unitsOverlap && c.scheduledSeconds > 0) p.aluSeconds = std::max(p.aluSeconds, c.scheduledSeconds / busy);
   p.textureSeconds = c.ops[opcount::kTexNearest] / d.lookupsPerSecond[kNearest] +
                      c.ops[opcount::kTexBilinear] / d.lookupsPerSecond[kBilinear] +
                      c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear] +
                      c.ops[opcount::kTexUniform] / d.lookupsPerSecond[kUniformFetch] +
                      (c.ops[opcount::kTexMiss] - c.ops[opcount::kTexStreamMiss]) * d.textureMissSeconds +
                      c.ops[opcount::kTexStreamMiss] * d.textureStreamSeconds;  // the cache simulation's missed lines
+  p.textureSeconds *= spread;
   // Software devices (units that do not overlap: the same cores load every storage-buffer element) pay the re-read
   // bytes as well; a GPU's caches serve them.
-  p.memorySeconds = double(c.bytesRead + c.bytesWritten + (d.unitsOverlap ? 0 : c.bytesReread)) / d.bandwidthBytesPerSecond;
+  // (A software device's buffer accesses are its cores' work, calibrate's copy on every core: they shrink with the busy
+  // cores too. A GPU's memory system is not the SMs': one SM's share of it is not modelled.)
+  p.memorySeconds = double(c.bytesRead + c.bytesWritten + (d.unitsOverlap ? 0 : c.bytesReread)) / d.bandwidthBytesPerSecond *
+                    (d.unitsOverlap ? 1.0 : spread);
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
   const uint64_t outside = std::min(c.outsideTriangles, c.triangles);
   p.rasterSeconds = double(c.triangles - outside) / r.trianglesPerSecond + double(outside) * r.outsideTriangleSeconds +
                     double(std::min(c.spanningTriangles, c.triangles - outside)) * r.spanningTriangleSeconds +
                     double(c.fragments) / r.fragmentsPerSecond +
                     double(c.attachmentBytes) / r.targetBytesPerSecond + double(c.vertexRuns) * r.vertexRunSeconds;
-  const uint64_t groups = c.triangles ? 0 : c.workgroups ? c.workgroups : (c.invocations + 63) / 64;
   // A raster pass is one submission of its draws: the first costs a dispatch, each further draw the pipeline's draw cost.
   const double submissions = c.triangles ? 1.0 : double(std::max<uint64_t>(c.dispatches, 1));
   const double draws = c.triangles ? double(std::max<uint64_t>(c.dispatches, 1) - 1) : 0.0;

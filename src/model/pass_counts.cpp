@@ -187,7 +187,14 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     check("sh", sh.c.data(), in.sh.c.data(), sh.c.size());
     check("sh", sh.band3.data(), in.sh.band3.data(), sh.band3.size());
     pr.invocations = (env.height() + 7) / 8 * 8, pr.dispatches = 1, pr.bytesWritten = uint64_t(env.height()) * 256;
-    rd.invocations = 16, rd.dispatches = 1, rd.bytesRead = rd.bytesWritten = uint64_t(env.height()) * 256;
+    // sh_reduce.comp's pairwise tree: rows - 1 merges per coefficient, each reading two vec4 and writing one in place,
+    // then one read of the root and one vec4 of the result per coefficient. Distinct bytes read are the rows (16 vec4
+    // each); the rest are re-reads of what the tree wrote.
+    const uint64_t rows = env.height(), merges = rows ? rows - 1 : 0;
+    rd.invocations = 16, rd.dispatches = 1, rd.workgroups = 1;  // local_size_x = 16: one workgroup, one core
+    rd.bytesRead = rows * 256;
+    rd.bytesReread = (merges * 2 + 1) * 256 - std::min<uint64_t>(rd.bytesRead, (merges * 2 + 1) * 256);
+    rd.bytesWritten = (merges + 1) * 256;
     f.passes.push_back(pr);
     f.passes.push_back(rd);
   }

@@ -77,11 +77,14 @@ void downsampleLanes(const float* src, float* dst, int sw, int sh, int layers) {
   };
   for (int layer = 0; layer < layers; ++layer)
     for (int y = 0; y < dh; ++y) {
-      typename X::MipTaps ty = X::mipTaps(I(y), I(sh));
       for (int x0 = 0; x0 < dw; x0 += 8) {
         I xs;
         for (int l = 0; l < 8; ++l) xs.set(l, std::min(x0 + l, dw - 1));
         typename X::MipTaps tx = X::mipTaps(xs, I(sw));
+        // The row's taps per vector, as every invocation of mip_downsample.glsl computes both: the counted build (the
+        // performance model's) then counts the divisions the GPU runs (hoisted out of the row, a wide level counted
+        // about half of them; tests/mips_test.cpp)
+        typename X::MipTaps ty = X::mipTaps(I(y), I(sh));
         V4 r[3];
         const int y0 = ty.i0[0];  // the row is uniform across the 8 lanes
         for (int k = 0; k < 3; ++k)
