@@ -150,6 +150,40 @@ TEST(PassCounts, RasterAndComputeShapes) {
 }
 
 
+// The shading pass counts the storage-buffer reads of its entry point (src/shaders/shade_*.comp) beside the G-buffer:
+// per invocation the material record's 26 components, fis's SH lighting and (with visibility) the pixel's
+// coefficients and light transport, the MIS techniques' settings block, and env's lights for the lanes that hold
+// geometry; the tables' distinct bytes once, every row read again a re-read.
+TEST(PassCounts, ShadePassesCountTheirEntryPointsBufferReads) {
+  Scene base = small({"bunny.json", ""});
+  base.width = 37, base.height = 19;  // 703 pixels, 704 invocations
+  std::ostringstream quiet;
+  const EnvironmentMap env = loadEnvironment(base.environment, quiet);
+  const uint64_t pixels = 703, inv = 704;
+  for (const char* t : {"fis", "env", "mirror", "kdtree-mis"}) {
+    Scene scene = base;
+    scene.technique = t;
+    const model::FrameCounts f = model::countFrame(scene, *env.texture, emu::lavapipeProfile());
+    const GBuffer g = gbufferEmu(scene, emu::lavapipeProfile());
+    const ShadeInputs in = shadeInputsEmu(scene, *env.texture, emu::lavapipeProfile());
+    const bool vis = in.visibility != nullptr;
+    uint64_t geometry = 0;
+    for (uint64_t i = 0; i < inv; ++i) geometry += g.texels[std::min(i, pixels - 1) * kGbufFloats + 3] != 0.0f;
+    ASSERT_GT(geometry, 0u);
+    ASSERT_LT(geometry, inv);
+    uint64_t expected = pixels * kGbufFloats * 4 + (vis ? pixels * 64 : 0);  // G-buffer texels, the pixels' coefficients
+    if (std::string(t) == "fis") expected += inv * (104 + 108 + (vis ? 256 : 0));
+    if (std::string(t) == "env") expected += inv * 104 + geometry * in.lights.count * 24;
+    if (std::string(t) == "mirror") expected += inv * 24;
+    if (std::string(t) == "kdtree-mis") expected += inv * (104 + 64 + (vis ? 64 : 0));
+    const auto shade = std::find_if(f.passes.begin(), f.passes.end(), [](const model::PassCounts& p) { return p.pass == "shade"; });
+    ASSERT_NE(shade, f.passes.end()) << t;
+    EXPECT_EQ(shade->bytesRead + shade->bytesReread, expected) << t;
+    if (std::string(t) != "mirror") EXPECT_GT(shade->bytesReread, shade->bytesRead) << t;  // rows read again and again
+    EXPECT_EQ(shade->bytesWritten, pixels * 16) << t;
+  }
+}
+
 // kSceneBrdfKinds compiles the absent BRDF kinds out on a device whose compiler specializes (lavapipe); SwiftShader
 // runs them under the constant as under a mask (folds_specialization_constants false, measured), so on a device that
 // runs every block their straight-line code counts; on a GPU that skips untaken blocks it never does. Bits unchanged.

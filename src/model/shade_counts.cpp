@@ -42,6 +42,41 @@ PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInput
   c.dispatches = 1;
   c.bytesRead = pixels * uint64_t(kGbufFloats) * 4;
   c.bytesWritten = pixels * 16;
+  // The storage-buffer reads of the technique's entry point (src/shaders/shade_*.comp) beside its G-buffer texel, per
+  // invocation (the tail's too: it shades the last pixel again). Distinct bytes are the tables; every invocation's
+  // read of a table row (its material record, the SH lighting, the environment's lights) is a re-read, which a GPU's
+  // caches serve and a software device pays per lane (lavapipe loads a storage-buffer element one lane and one
+  // component at a time, at a uniform index as at any: session 36 probes). Components as the entry points read them:
+  // a material record 26 (diffuse.xyz, specular.xyz, kind.x, brdf, lobe0, lobe1, rho, maps.xyz; mirror: diffuse.xyz
+  // and specular.xyz); fis the SH lighting (9 x .xyz) and with visibility the pixel's 16 coefficients and the
+  // 48-float light transport; the MIS techniques their 64-byte settings block (and the pixel's 16 coefficients);
+  // env each light's dir.xyz and weight.xyz, for the lanes that hold geometry only (inside the entry point's `if`);
+  // glints its 44-byte settings.
+  const bool visOn = vis && in.visibility;
+  const uint64_t inv = c.invocations, materialRows = materialRecords(scene, true).size();
+  uint64_t rowBytes = 0, tableBytes = 0;  // per invocation; the tables' distinct bytes
+  if (isGlintsTechnique(scene.technique)) {
+    rowBytes = 44, tableBytes = 44;
+  } else {
+    rowBytes = scene.technique == "mirror" ? 24 : 104, tableBytes = materialRows * 128;
+    if (usesFisPass(scene.technique)) {
+      rowBytes += 108, tableBytes += 21 * 16;
+      if (visOn) rowBytes += 64 + 192;
+    } else if (usesMisPass(scene.technique)) {
+      rowBytes += 64, tableBytes += 64;
+      if (visOn) rowBytes += 64;
+    }
+    if (visOn) c.bytesRead += pixels * 64;  // the pixel's coefficients, once each
+  }
+  uint64_t reread = inv * rowBytes;
+  if (scene.technique == "env") {
+    uint64_t geometry = 0;  // lanes whose G-buffer texel holds geometry (g0.w: the material slot + 1)
+    for (uint64_t i = 0; i < inv; ++i) geometry += g.texels[std::min(i, pixels - 1) * kGbufFloats + 3] != 0.0f;
+    reread += geometry * in.lights.count * 24;
+    tableBytes += uint64_t(in.lights.count) * 32;
+  }
+  c.bytesRead += tableBytes;
+  c.bytesReread = reread > tableBytes ? reread - tableBytes : 0;
   if (out) *out = std::move(image);
   return c;
 }
