@@ -157,6 +157,11 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   EXPECT_EQ(r.bound, "raster");
   raster.rasterPipeline = kGbufferRaster;  // the G-buffer's pipeline at its own rates
   EXPECT_DOUBLE_EQ(predict(raster, rd).rasterSeconds, 4e-3 + 3e-2 + 2.5e-2);
+  // Vertex fetch and fragment writes: inside a software device's raster rates (calibrate's draws do both), a GPU's
+  // memory traffic.
+  raster.rasterBytes = 20000000;  // 2 ms at 1e10 B/s
+  EXPECT_DOUBLE_EQ(predict(raster, rd).memorySeconds, 0.0);
+  EXPECT_DOUBLE_EQ(predict(raster, device(true)).memorySeconds, 2e-3);
 }
 
 // A workgroup runs on one core (GPU: one SM): a compute pass of fewer workgroups than cores has only that many busy,

@@ -71,8 +71,10 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   // bytes as well; a GPU's caches serve them.
   // (A software device's buffer accesses are its cores' work, calibrate's copy on every core: they shrink with the busy
   // cores too. A GPU's memory system is not the SMs': one SM's share of it is not modelled.)
-  p.memorySeconds = double(c.bytesRead + c.bytesWritten + (d.unitsOverlap ? 0 : c.bytesReread)) / d.bandwidthBytesPerSecond *
-                    (d.unitsOverlap ? 1.0 : spread);
+  // A raster pass's vertex fetch and fragment writes: a GPU's memory traffic; a software device's raster rates already
+  // hold them (PassCounts::rasterBytes).
+  p.memorySeconds = double(c.bytesRead + c.bytesWritten + (d.unitsOverlap ? c.rasterBytes : c.bytesReread)) /
+                    d.bandwidthBytesPerSecond * (d.unitsOverlap ? 1.0 : spread);
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
   const uint64_t outside = std::min(c.outsideTriangles, c.triangles);
   p.rasterSeconds = double(c.triangles - outside) / r.trianglesPerSecond + double(outside) * r.outsideTriangleSeconds +

@@ -86,7 +86,7 @@ void accumulate(PassCounts& into, const PassCounts& c) {
   for (int k = 0; k < opcount::kKinds; ++k) into.ops[size_t(k)] += c.ops[size_t(k)];
   into.invocations += c.invocations, into.dispatches += c.dispatches, into.pipelines += c.pipelines, into.pipelineWords += c.pipelineWords;
   into.workgroups += c.workgroups;
-  into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.bytesReread += c.bytesReread, into.scheduledSeconds += c.scheduledSeconds;
+  into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.bytesReread += c.bytesReread, into.rasterBytes += c.rasterBytes, into.scheduledSeconds += c.scheduledSeconds;
 }
 
 }  // namespace
@@ -138,12 +138,12 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     const Mesh& m = scene.meshes[o.mesh];
     gb.invocations += m.positions.size();
     gb.vertexRuns += vertexCacheRuns(m.indices, core.vertexCache);
-    gb.bytesRead += m.positions.size() * sizeof(VertexGpu) + m.indices.size() * 4;
+    gb.rasterBytes += m.positions.size() * sizeof(VertexGpu) + m.indices.size() * 4;
   }
   gb.invocations += 4 * gs.raster.quads;
   gb.dispatches = scene.objects.size();
   // Covered pixels write the attachments; the targets are cleared and copied out.
-  gb.bytesWritten = gs.raster.fragments * (uint64_t(kGbufFloats) * 4 + 4);
+  gb.rasterBytes += gs.raster.fragments * (uint64_t(kGbufFloats) * 4 + 4);
   gb.attachmentBytes = uint64_t(scene.width) * scene.height * (uint64_t(kGbufFloats) * 4 + 4);
   f.passes.push_back(gb);
 
@@ -243,11 +243,11 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
       const Mesh& m = scene.meshes[o.mesh];
       sp.invocations += m.positions.size() * v.directions.size();
       sp.vertexRuns += vertexCacheRuns(m.indices, core.vertexCache) * v.directions.size();
-      sp.bytesRead += (m.positions.size() * sizeof(VertexGpu) + m.indices.size() * 4) * v.directions.size();
+      sp.rasterBytes += (m.positions.size() * sizeof(VertexGpu) + m.indices.size() * 4) * v.directions.size();
     }
     sp.helperLanes = 0;  // depth only: no fragment shader, no quads run
     sp.dispatches = scene.objects.size() * v.directions.size();
-    sp.bytesWritten = ss.raster.fragments * 4;  // depth writes; the maps are cleared and copied out
+    sp.rasterBytes += ss.raster.fragments * 4;  // depth writes; the maps are cleared and copied out
     sp.attachmentBytes = uint64_t(v.settings.size) * v.settings.size * 4 * v.directions.size();
     f.passes.push_back(sp);
 

@@ -35,6 +35,10 @@ struct PassCounts {
   // (lavapipe: 2.5-3.3 ns a vec4 in calibrate's copy over 0.25 MiB as over 64 MiB, session 31); a GPU's caches hit.
   uint64_t bytesReread = 0;
   uint64_t attachmentBytes = 0;  // raster passes: render-target bytes cleared and copied out
+  // raster passes: vertex and index bytes fetched and fragment outputs written. A GPU's memory term pays them; on a
+  // software device they are inside the raster rates (calibrate's draws fetch their vertices and write their pixels),
+  // and its "bandwidth" is the price of a shader's storage-buffer access (DESIGN §13), which neither is.
+  uint64_t rasterBytes = 0;
   uint64_t triangles = 0, fragments = 0, helperLanes = 0;  // raster passes: triangles in, covered pixels, quad helpers
   RasterPipeline rasterPipeline = kDepthOnly;              // raster passes: whose rates they run at
   uint64_t spanningTriangles = 0;  // raster passes: triangles whose extent holds a pixel-centre row (emu RasterStats)
