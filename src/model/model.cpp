@@ -54,8 +54,9 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   // A compute pass runs its workgroups on the cores (GPU: SMs), a workgroup on one: with fewer workgroups than cores
   // only that many are busy, and the rates, which are every core's together, shrink to theirs (the SH reduction's one
   // workgroup of 16 invocations runs on one of lavapipe's threads). Raster passes spread their bins over every core.
-  const double busy = groups ? double(std::min<uint64_t>(groups, uint64_t(std::max(d.cores, 1)))) : double(std::max(d.cores, 1));
-  const double spread = double(std::max(d.cores, 1)) / busy;
+  const double cores = double(std::max(d.cores, 1));
+  const double busy = groups ? std::min(double(groups), cores) : cores;
+  const double spread = cores / busy;
   for (int k = 0; k < kOpClasses; ++k) p.aluSeconds += ops[size_t(k)] / d.opsPerSecond[size_t(k)];
   p.aluSeconds *= spread;
   // Scheduled on the device's core model: that time, over the busy cores (never below the issue-rate sum above).
@@ -67,12 +68,10 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
                      (c.ops[opcount::kTexMiss] - c.ops[opcount::kTexStreamMiss]) * d.textureMissSeconds +
                      c.ops[opcount::kTexStreamMiss] * d.textureStreamSeconds;  // the cache simulation's missed lines
   p.textureSeconds *= spread;
-  // Software devices (units that do not overlap: the same cores load every storage-buffer element) pay the re-read
-  // bytes as well; a GPU's caches serve them.
-  // (A software device's buffer accesses are its cores' work, calibrate's copy on every core: they shrink with the busy
-  // cores too. A GPU's memory system is not the SMs': one SM's share of it is not modelled.)
-  // A raster pass's vertex fetch and fragment writes: a GPU's memory traffic; a software device's raster rates already
-  // hold them (PassCounts::rasterBytes).
+  // Software devices (units that do not overlap) load every storage-buffer element on their busy cores, re-reads
+  // included, at calibrate's copy rate; their raster rates already hold a raster pass's vertex fetch and fragment
+  // writes. A GPU's caches serve the re-reads, its memory carries the raster bytes, and its memory system is not one
+  // SM's (no busy-core share).
   p.memorySeconds = double(c.bytesRead + c.bytesWritten + (d.unitsOverlap ? c.rasterBytes : c.bytesReread)) /
                     d.bandwidthBytesPerSecond * (d.unitsOverlap ? 1.0 : spread);
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];

@@ -192,8 +192,9 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     // each); the rest are re-reads of what the tree wrote.
     const uint64_t rows = env.height(), merges = rows ? rows - 1 : 0;
     rd.invocations = 16, rd.dispatches = 1, rd.workgroups = 1;  // local_size_x = 16: one workgroup, one core
+    const uint64_t reads = (merges * 2 + 1) * 256;
     rd.bytesRead = rows * 256;
-    rd.bytesReread = (merges * 2 + 1) * 256 - std::min<uint64_t>(rd.bytesRead, (merges * 2 + 1) * 256);
+    rd.bytesReread = reads - std::min(reads, rd.bytesRead);
     rd.bytesWritten = (merges + 1) * 256;
     f.passes.push_back(pr);
     f.passes.push_back(rd);

@@ -31,8 +31,9 @@ struct PassCounts {
   uint64_t workgroups = 0;    // compute workgroups dispatched (0: one per 64 invocations; raster passes have none)
   uint64_t bytesRead = 0, bytesWritten = 0;  // buffer traffic (texture reads are in the lookups)
   // Buffer reads beyond bytesRead's distinct bytes: what invocations read again that a neighbour read (the MIP chain's
-  // 3x3 footprints, 9 texels read per 4 of the level). A software device pays every storage-buffer access alike
-  // (lavapipe: 2.5-3.3 ns a vec4 in calibrate's copy over 0.25 MiB as over 64 MiB, session 31); a GPU's caches hit.
+  // 3x3 footprints, 9 texels read per 4 of the level; a table row every invocation reads). A software device pays
+  // every storage-buffer access alike, whatever the address (lavapipe loads per lane and component: DESIGN §13); a
+  // GPU's caches hit.
   uint64_t bytesReread = 0;
   uint64_t attachmentBytes = 0;  // raster passes: render-target bytes cleared and copied out
   // raster passes: vertex and index bytes fetched and fragment outputs written. A GPU's memory term pays them; on a
