@@ -439,7 +439,7 @@ constexpr vec_t<T, kLanes> kLaneDy = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 
 
 template <class EdgeT, bool Fused>
 void depthOnlyBlocks(const int64_t A[3], const int64_t B[3], const int64_t C[3], int bits, const Plane3& pz, int bx0,
-                     int by0, int x1, int y1, Framebuffer& fb, size_t& quads, size_t& frags) {
+                     int by0, int x1, int y1, Framebuffer& fb, size_t& quads, size_t& frags, size_t& blocks, size_t& partial) {
   // Edge values accumulate in unsigned lanes (wrap-around is defined; every value compared is inside
   // EdgeT's range, see depthOnlyTriangle) and are compared as signed.
   using U = std::make_unsigned_t<EdgeT>;
@@ -488,6 +488,8 @@ void depthOnlyBlocks(const int64_t A[3], const int64_t B[3], const int64_t C[3],
       const I32xL liveV = inV & (z <= d);
       const uint32_t live = laneBits(liveV);
       quads += size_t(blockQuads(in));
+      blocks += in != 0;
+      partial += in != 0 && in != 0xffffu;
       frags += size_t(std::popcount(live));
       const F32xL out = liveV ? z : d;
       if (whole) {
@@ -502,7 +504,7 @@ void depthOnlyBlocks(const int64_t A[3], const int64_t B[3], const int64_t C[3],
 
 template <bool Fused>
 void depthOnlyTriangle(const TriSetup& s, int bits, int tx0, int ty0, int tx1, int ty1, Framebuffer& fb,
-                       size_t& quads, size_t& frags) {
+                       size_t& quads, size_t& frags, size_t& blocks, size_t& partial) {
   const int x0 = std::max(s.x0, tx0), x1 = std::min(s.x1, tx1), y0 = std::max(s.y0, ty0), y1 = std::min(s.y1, ty1);
   if (x0 > x1 || y0 > y1) return;
   // The blocks' rectangle: 4-aligned inside the 64-aligned tile.
@@ -525,8 +527,8 @@ void depthOnlyTriangle(const TriSetup& s, int bits, int tx0, int ty0, int tx1, i
     if (lo > 0) A[e] = 0, B[e] = 0, C[e] = 1;  // every pixel passes it
     else narrow = narrow && lo >= INT32_MIN && hi <= INT32_MAX;
   }
-  if (narrow) depthOnlyBlocks<int32_t, Fused>(A, B, C, bits, s.z, bx0, by0, x1, y1, fb, quads, frags);
-  else depthOnlyBlocks<int64_t, Fused>(A, B, C, bits, s.z, bx0, by0, x1, y1, fb, quads, frags);
+  if (narrow) depthOnlyBlocks<int32_t, Fused>(A, B, C, bits, s.z, bx0, by0, x1, y1, fb, quads, frags, blocks, partial);
+  else depthOnlyBlocks<int64_t, Fused>(A, B, C, bits, s.z, bx0, by0, x1, y1, fb, quads, frags, blocks, partial);
 }
 
 }  // namespace
@@ -630,7 +632,7 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
     if (ok[t]) bin(tris[t]), spans(tris[t]);
     for (auto& s : extra[t]) bin(s), spans(s);
   }
-  std::atomic<size_t> quadCount{0}, fragCount{0};
+  std::atomic<size_t> quadCount{0}, fragCount{0}, blockCount{0}, partialCount{0};
   const bool fused = dev.raster.interpFma;
   const bool flush = dev.denormFragment == DenormMode::Flush;
   const int bits = dev.raster.subPixelBits;
@@ -639,19 +641,22 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
     DenormalScope mode(flush);
     const int tx0 = int(b % size_t(tilesX)) * kTile, ty0 = int(b / size_t(tilesX)) * kTile;
     const int tx1 = std::min(tx0 + kTile, int(fb.width)) - 1, ty1 = std::min(ty0 + kTile, int(fb.height)) - 1;
-    size_t quads = 0, frags = 0;
+    size_t quads = 0, frags = 0, blocks = 0, partial = 0;
     if (!fs && dev.raster.setup == DeviceProfile::Raster::Setup::Gallivm) {  // depth-only pipeline
       for (const TriSetup* s : bins[b]) {
-        if (fused) depthOnlyTriangle<true>(*s, bits, tx0, ty0, tx1, ty1, fb, quads, frags);
-        else depthOnlyTriangle<false>(*s, bits, tx0, ty0, tx1, ty1, fb, quads, frags);
+        if (fused) depthOnlyTriangle<true>(*s, bits, tx0, ty0, tx1, ty1, fb, quads, frags, blocks, partial);
+        else depthOnlyTriangle<false>(*s, bits, tx0, ty0, tx1, ty1, fb, quads, frags, blocks, partial);
       }
       quadCount.fetch_add(quads, std::memory_order_relaxed);
       fragCount.fetch_add(frags, std::memory_order_relaxed);
+      blockCount.fetch_add(blocks, std::memory_order_relaxed);
+      partialCount.fetch_add(partial, std::memory_order_relaxed);
       return;
     }
     Quad q;
     q.drawId = in.drawId;
     float out[4 * 64][4];  // up to 64 outputs
+    uint16_t blockCover[256] = {};  // per triangle: the pixels it covers of each 4x4 block of the tile (cleared after it)
     for (const TriSetup* s : bins[b]) {
       const int qx0 = std::max(s->x0, tx0) & ~1, qy0 = std::max(s->y0, ty0) & ~1;
       const int qx1 = std::min(s->x1, tx1), qy1 = std::min(s->y1, ty1);
@@ -668,6 +673,9 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
       const int64_t step = int64_t(1) << bits;
       // Pixels of the quad outside the tile are never covered (their tile covers them).
       const bool clipX = qx0 < tx0 || qx1 + 1 > tx1, clipY = qy0 < ty0 || qy1 + 1 > ty1;
+      // The blocks of 4x4 pixels this triangle covers a pixel of (blockCover: which, bit 4 r + c).
+      uint8_t touched[256];
+      int nTouched = 0;
       for (int qy = qy0; qy <= qy1; qy += 2) {
         const int64_t PY = int64_t(qy) << bits;
         int64_t rowE[3];
@@ -687,6 +695,12 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
               if (px > tx1 || py > ty1 || px < tx0 || py < ty0) covered &= uint8_t(~(1u << i));
             }
           if (!covered) continue;
+          {
+            const int bi = ((qy - ty0) >> 2) * 16 + ((qx - tx0) >> 2);
+            if (!blockCover[bi]) touched[nTouched++] = uint8_t(bi);
+            const int shift = (qy & 2) * 4 + (qx & 2);  // the quad's top-left pixel in the block
+            blockCover[bi] |= uint16_t((covered & 3u) << shift | (covered >> 2) << (shift + 4));
+          }
           q.x = qx, q.y = qy, q.covered = covered, q.triangle = s->triangle, q.frontFacing = s->front;
           uint8_t live = 0;
           float xr[4], yr[4];  // Reactor: pixel positions relative to vertex 0
@@ -734,9 +748,16 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
           }
         }
       }
+      for (int i = 0; i < nTouched; ++i) {
+        ++blocks;
+        partial += blockCover[touched[i]] != 0xffffu;
+        blockCover[touched[i]] = 0;
+      }
     }
     quadCount.fetch_add(quads, std::memory_order_relaxed);
     fragCount.fetch_add(frags, std::memory_order_relaxed);
+    blockCount.fetch_add(blocks, std::memory_order_relaxed);
+    partialCount.fetch_add(partial, std::memory_order_relaxed);
   });
   if (stats) {
     stats->trianglesIn += in.triangles;
@@ -745,6 +766,8 @@ void draw(const DeviceProfile& dev, Framebuffer& fb, const DrawInput& in, const 
     stats->trianglesOutside += outside.load();
     stats->quads += quadCount.load();
     stats->fragments += fragCount.load();
+    stats->blocks += blockCount.load();
+    stats->partialBlocks += partialCount.load();
     stats->trianglesSpanning += spanning;
   }
 }

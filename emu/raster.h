@@ -75,13 +75,20 @@ struct Framebuffer {
 // set-up may reject the others before computing spans and interpolants; the performance model prints it, a lead for a
 // set-up term of its raster cost, not used yet). trianglesOutside: triangles whose three vertices are all outside one
 // clip plane (trivially rejected before set-up; counted in trianglesClipped too).
+// blocks: per triangle, the 4x4-aligned pixel blocks holding a pixel it covers (llvmpipe's rasterizer runs the fragment
+// stage, depth test included, once per such block whatever its coverage: lp_rast_tri.c's 4x4 stamps), summed.
+// partialBlocks: of those, the blocks the triangle covers only partly (fewer than 16 pixels): llvmpipe shades a fully
+// covered stamp as is and tests the triangle's edges per pixel of a partial one first (lp_rast_tri_tmp.h: block_full_4
+// against do_block_4), so a pass of small and medium triangles, nearly all of whose stamps are partial, pays per stamp
+// what one of large triangles pays per pixel.
 struct RasterStats {
   size_t trianglesIn = 0, trianglesClipped = 0, trianglesCulled = 0, quads = 0, fragments = 0, trianglesSpanning = 0;
-  size_t trianglesOutside = 0;
+  size_t trianglesOutside = 0, blocks = 0, partialBlocks = 0;
   /// Several draws' statistics as one (every field: a pass that sums them field by field once left two out).
   RasterStats& operator+=(const RasterStats& o) {
     trianglesIn += o.trianglesIn, trianglesClipped += o.trianglesClipped, trianglesCulled += o.trianglesCulled;
     quads += o.quads, fragments += o.fragments, trianglesSpanning += o.trianglesSpanning, trianglesOutside += o.trianglesOutside;
+    blocks += o.blocks, partialBlocks += o.partialBlocks;
     return *this;
   }
 };

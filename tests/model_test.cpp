@@ -2,6 +2,10 @@
 // filter is divided by its rate, software devices add the terms and GPUs overlap them, the largest term is the bound.
 #include <gtest/gtest.h>
 
+#include <iomanip>
+#include <string>
+
+#include "model/device_desc.h"
 #include "model/model.h"
 
 namespace {
@@ -230,5 +234,95 @@ TEST(Model, PrivateArrayAccessesAreCostedAtTheirOwnRates) {
   EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 48.0 / 2e8 + 24.0 / 1e8 + 16.0 / 1e9);
   d.opsPerSecond[kPrivateRead] = d.opsPerSecond[kPrivateWrite] = 1e9;  // accesses at the fadd rate
   EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 88.0 / 1e9);
+}
+}  // namespace
+
+namespace {
+// The exact-math layer's division and square root are one operation each of their own class (model/device_desc.h
+// ex_div, ex_sqrt), at the rate calibrate measured on the routine itself.
+TEST(Model, ExactDivisionsAndSquareRootsAreCostedAtTheirOwnRates) {
+  PassCounts c;
+  std::array<uint64_t, opcount::kKinds> t{};
+  t[opcount::kExDiv] = 4, t[opcount::kExSqrt] = 2, t[opcount::kFMul] = 1;
+  addTicks(c, t, 8);
+  EXPECT_EQ(scalarOps(c)[kExDiv], 32.0);
+  EXPECT_EQ(scalarOps(c)[kExSqrt], 16.0);
+  EXPECT_EQ(scalarOps(c)[kIAlu], 0.0);
+  DeviceDesc d = device(false);
+  d.opsPerSecond[kExDiv] = 1e7, d.opsPerSecond[kExSqrt] = 2e7;
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 32.0 / 1e7 + 16.0 / 2e7 + 8.0 / 1e9);
+}
+
+// The portable routines are straight-line: one vector's operations by kind, the same for any operands, and every kind
+// an ALU kind (no texture, no private array, no nested exact operation).
+TEST(Model, ExactMathMixIsTheRoutinesStraightLineOperations) {
+  for (opcount::Kind k : {opcount::kExDiv, opcount::kExSqrt}) {
+    const auto mix = exactMathMix(k);
+    uint64_t alu = 0;
+    for (int j = 0; j < opcount::kTexLookup; ++j) alu += mix[size_t(j)];
+    for (int j = opcount::kTexLookup; j < opcount::kKinds; ++j) EXPECT_EQ(mix[size_t(j)], 0u) << opcount::kKindNames[j];
+    EXPECT_EQ(mix[opcount::kExDiv] + mix[opcount::kExSqrt] + mix[opcount::kPrivRead] + mix[opcount::kPrivWrite], 0u);
+    // exact_math.h's derivation block: 164 counted operations per division, 101 per square root.
+    EXPECT_EQ(alu, k == opcount::kExDiv ? 164u : 101u);
+    EXPECT_GT(mix[opcount::kIMul], 0u);
+    EXPECT_GT(mix[opcount::kFMul], 0u);
+  }
+  EXPECT_THROW(exactMathMix(opcount::kFAdd), std::invalid_argument);
+}
+
+// A GPU's ex_div and ex_sqrt (devices/h100.json, h200.json: public figures) are the routine's operation mix at the
+// file's per-class rates, and their latencies the mix's operations one after another (not used: a GPU's ALU term is
+// throughput-bound). Recomputed here so the files cannot drift from the routine or the rates.
+TEST(Model, GpuExactMathRatesAreTheRoutinesMixAtThePublicRates) {
+  for (const char* gpu : {"h100", "h200"}) {
+    const DeviceDesc d = loadDeviceDesc(std::string(SHADETWIN_SOURCE_DIR) + "/devices/" + gpu + ".json");
+    for (opcount::Kind k : {opcount::kExDiv, opcount::kExSqrt}) {
+      PassCounts c;
+      addTicks(c, exactMathMix(k), 1);  // lane operations per lane's division
+      const auto ops = scalarOps(c);
+      double seconds = 0, latency = 0;
+      for (int j = 0; j < kOpClasses; ++j)
+        if (ops[size_t(j)] > 0) seconds += ops[size_t(j)] / d.opsPerSecond[size_t(j)], latency += ops[size_t(j)] * d.latencySeconds[size_t(j)];
+      const OpClass cls = k == opcount::kExDiv ? kExDiv : kExSqrt;
+      EXPECT_NEAR(d.opsPerSecond[cls] * seconds, 1.0, 1e-9) << gpu << " " << kOpClassNames[cls] << ": " << std::setprecision(17) << 1.0 / seconds;
+      EXPECT_NEAR(d.latencySeconds[cls] / latency, 1.0, 1e-9) << gpu << " " << kOpClassNames[cls] << ": " << std::setprecision(17) << latency;
+    }
+  }
+}
+
+// An operation that holds several window entries (an exact division) leaves room for fewer others in flight: two
+// independent ones each of half the window overlap, of the whole window they run one after the other.
+TEST(Model, AnOperationOfManyWindowEntriesLimitsTheOverlap) {
+  auto twoIndependent = [](uint32_t slots) {
+    opcount::Scheduler s;
+    s.latency[opcount::kExDiv] = 10.0, s.interval[opcount::kExDiv] = 1.0, s.slots[opcount::kExDiv] = slots, s.window = 8;
+    s.start();
+    s.issue(opcount::kExDiv, 0.0);
+    s.issue(opcount::kExDiv, 0.0);
+    return s.lastRetire;
+  };
+  EXPECT_DOUBLE_EQ(twoIndependent(1), 11.0);  // the second dispatches one interval later
+  EXPECT_DOUBLE_EQ(twoIndependent(4), 11.0);  // both fit the window
+  EXPECT_DOUBLE_EQ(twoIndependent(8), 20.0);  // the second waits for the first to retire
+  EXPECT_DOUBLE_EQ(twoIndependent(100), 20.0);  // clamped to the window
+}
+}  // namespace
+
+namespace {
+// Partly covered 4x4 blocks (emu RasterStats::partialBlocks) cost their pipeline's partial_block_seconds on top of the
+// pixels: the same pixels in more partial blocks (smaller triangles) cost more; another pipeline's rate does not apply.
+TEST(Model, PartlyCoveredBlocksCostTheirPipelinesRate) {
+  PassCounts c;
+  c.triangles = 100, c.fragments = 1600, c.blocks = 100, c.partialBlocks = 0, c.rasterPipeline = kGbufferRaster;
+  DeviceDesc d = device(false);
+  d.raster[kGbufferRaster].partialBlockSeconds = 5e-8;
+  const double full = predict(c, d).rasterSeconds;
+  EXPECT_DOUBLE_EQ(full, 100.0 / 5e6 + 1600.0 / 1e8);
+  c.blocks = 400, c.partialBlocks = 400;  // the same pixels as 400 partial blocks
+  EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, full + 400 * 5e-8);
+  d.raster[kDepthOnly].partialBlockSeconds = 1.0;
+  EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, full + 400 * 5e-8);
+  d.unitsOverlap = true;  // a GPU's raster term has it too where its file gives one (h100/h200: 0)
+  EXPECT_DOUBLE_EQ(predict(c, d).rasterSeconds, full + 400 * 5e-8);
 }
 }  // namespace

@@ -226,3 +226,49 @@ TEST(OpCount, PrivateArrayAccessesCountApartAndKeepTheirValues) {
   EXPECT_DOUBLE_EQ(written.t, 8.0);
   EXPECT_DOUBLE_EQ(again.t, 11.0);
 }
+
+namespace {
+// The counted exDiv and exSqrt (the exact-math layer's fast path in the counting build) are one ex_div or ex_sqrt
+// operation a vector, with the emulator's own correctly rounded bits: random bit patterns of every class (subnormals,
+// zeros, infinities, NaNs, normals), against the scalar build's exDiv / exSqrt (lanes/kernels.h evalMathKernel).
+TEST(OpCount, ExactDivisionAndSquareRootAreOneOperationWithTheEmulatorsBits) {
+  std::mt19937 rng(19);
+  for (int round = 0; round < 20000; ++round) {
+    float a[8], b[8], in[24], want[24];
+    for (int i = 0; i < 8; ++i) {
+      uint32_t ua = rng(), ub = rng();
+      if (round % 4 == 1) ua &= 0x807fffffu;  // subnormals and zeros
+      if (round % 4 == 2) ub = (ub & 0x80000000u) | (rng() % 3 == 0 ? 0x7f800000u : ub & 0x007fffffu);
+      std::memcpy(&a[i], &ua, 4), std::memcpy(&b[i], &ub, 4);
+      in[3 * i] = a[i], in[3 * i + 1] = b[i], in[3 * i + 2] = 0.0f;
+    }
+    opcount::F<8> va(0.0f), vb(0.0f);
+    for (int i = 0; i < 8; ++i) va.set(i, a[i]), vb.set(i, b[i]);
+    opcount::counts = {};
+    const auto q = shadetwin::shade::nativeDiv(va, vb);
+    const auto r = shadetwin::shade::nativeSqrt(va);
+    ASSERT_TRUE(q.ok && r.ok);
+    EXPECT_EQ(opcount::counts[opcount::kExDiv], 1u);
+    EXPECT_EQ(opcount::counts[opcount::kExSqrt], 1u);
+    uint64_t others = 0;
+    for (int k = 0; k < opcount::kTexLookup; ++k) others += k == opcount::kExDiv || k == opcount::kExSqrt ? 0 : opcount::counts[size_t(k)];
+    EXPECT_EQ(others, 0u);
+    shadetwin::evalMathKernel(0, in, want, 8, 1);  // kMathDiv
+    for (int i = 0; i < 8; ++i) ASSERT_EQ(std::memcmp(&want[3 * i], &q.value.x.v[i], 4), 0) << a[i] << " / " << b[i];
+    shadetwin::evalMathKernel(1, in, want, 8, 1);  // kMathSqrt
+    for (int i = 0; i < 8; ++i) ASSERT_EQ(std::memcmp(&want[3 * i], &r.value.x.v[i], 4), 0) << "sqrt " << a[i];
+  }
+  // One lane (the scalar drivers' counted build).
+  opcount::F<1> x(2.0f), y(3.0f);
+  float one[3] = {2.0f, 3.0f, 0.0f}, oneWant[3];
+  shadetwin::evalMathKernel(0, one, oneWant, 1, 1);
+  EXPECT_EQ(shadetwin::shade::nativeDiv(x, y).value[0], oneWant[0]);
+  // Counting the portable routine instead (exactMathMix): the fast path is off, nothing is counted here.
+  opcount::counts = {};
+  opcount::countPortableExactMath = true;
+  EXPECT_FALSE(shadetwin::shade::nativeDiv(x, y).ok);
+  EXPECT_FALSE(shadetwin::shade::nativeSqrt(x).ok);
+  opcount::countPortableExactMath = false;
+  EXPECT_EQ(opcount::counts[opcount::kExDiv] + opcount::counts[opcount::kExSqrt], 0u);
+}
+}  // namespace

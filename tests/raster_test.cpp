@@ -7,6 +7,8 @@
 #include <cstring>
 #include <random>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <vector>
 
 #include "emu/raster.h"
@@ -472,5 +474,56 @@ TEST(Raster, TrianglesOutsideAClipPlaneAreCountedOnBothSetups) {
     EXPECT_EQ(outside, xy ? 2u : 1u) << p->name;
     EXPECT_GT(frags, 0u) << p->name;  // the straddling one covers pixels
   }
+}
+}  // namespace
+
+namespace {
+// RasterStats::blocks and partialBlocks (the performance model's raster costs: llvmpipe runs a 4x4 block's fragment
+// stage, depth test included, once whatever its coverage, and tests a partly covered block's pixels against the edges
+// first): per triangle, the 4x4-aligned blocks holding a pixel it covers, and of those the ones it covers fewer than
+// 16 pixels of. Random triangles of every size (radius 0.3 to 54 pixels) on 40 seeds, each through the shaded path (a
+// fragment function: quads) and the depth-only path (lavapipe's blocks), against the quads' covered pixels.
+TEST(Raster, BlocksAreTheFourByFourBlocksEachTriangleCovers) {
+  const uint32_t W = 150, H = 110;
+  size_t full = 0, partial = 0;
+  for (uint32_t seed = 1; seed <= 40; ++seed) {
+    std::mt19937 rng(seed);
+    // Inside the view (a clipped triangle is several, each counting its own blocks).
+    std::uniform_real_distribution<float> S(seed % 4 == 1 ? 0.3f : 0.5f, seed % 4 == 0 ? 54.0f : seed % 4 == 1 ? 1.5f : 12.0f),
+        U(0.0f, 1.0f);
+    for (int t = 0; t < 8; ++t) {
+      float clip[12];
+      const float r = S(rng), cx = r + U(rng) * (float(W) - 2 * r), cy = r + U(rng) * (float(H) - 2 * r);
+      for (int v = 0; v < 3; ++v) clipOf(cx + r * std::cos(2.1f * float(v) + 0.3f * float(t)), cy + r * std::sin(2.1f * float(v) + float(seed)),
+                                         0.5f, W, H, clip + 4 * v);
+      const float vary[3] = {0, 0, 0};
+      const uint32_t idx[3] = {0, 1, 2};
+      emu::DrawInput in{clip, vary, 1, idx, 1};
+      std::map<std::pair<int, int>, int> pixels;  // covered pixels per block
+      emu::Framebuffer fb(W, H, 1, 2.0f);
+      emu::RasterStats shaded;
+      std::mutex m;  // the tiles run in parallel
+      emu::draw(dev(), fb, in, [&](const emu::Quad& q, float (*out)[4]) {
+        std::lock_guard<std::mutex> lock(m);
+        for (int i = 0; i < 4; ++i) {
+          out[0][i] = 1.0f;
+          if (q.covered & (1u << i)) ++pixels[{(q.x + (i & 1)) >> 2, (q.y + (i >> 1)) >> 2}];
+        }
+      }, &shaded);
+      size_t partly = 0;
+      for (const auto& [block, n] : pixels) partly += n < 16;
+      EXPECT_EQ(shaded.blocks, pixels.size()) << seed << " " << t;
+      EXPECT_EQ(shaded.partialBlocks, partly) << seed << " " << t;
+      emu::Framebuffer fb2(W, H, 1, 2.0f);
+      emu::RasterStats depthOnly;
+      emu::draw(emu::lavapipeProfile(), fb2, in, {}, &depthOnly);
+      EXPECT_EQ(depthOnly.blocks, pixels.size()) << seed << " " << t;
+      EXPECT_EQ(depthOnly.partialBlocks, partly) << seed << " " << t;
+      EXPECT_LE(depthOnly.blocks, depthOnly.quads);
+      full += pixels.size() - partly, partial += partly;
+    }
+  }
+  EXPECT_GT(full, 200u);  // both kinds occur
+  EXPECT_GT(partial, 200u);
 }
 }  // namespace

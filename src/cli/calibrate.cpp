@@ -30,6 +30,7 @@ namespace {
 #include "calibrate_comp.inc"
 #include "calibrate_group_comp.inc"
 #include "calibrate_compile_comp.inc"
+#include "calibrate_exmath_comp.inc"
 
 struct Push {
   uint32_t kind, iters, count, pad;
@@ -40,7 +41,8 @@ static_assert(sizeof(Push) == 32, "calibrate.comp push constants");
 enum Kind : uint32_t {
   kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK,
   kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK, kShiftK, kICmpK, kISelectK,
-  kPrivReadK, kPrivWriteK
+  kPrivReadK, kPrivWriteK,
+  kExDivK, kExSqrtK  // calibrate_exmath.comp's kinds 0 and 1 (the shared exDiv and exSqrt)
 };
 // Chain steps per iteration of the arithmetic kernels (calibrate.comp STEPS_INDEP, STEPS_DEP).
 constexpr double kSteps = 128.0;
@@ -79,12 +81,19 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
-  std::unique_ptr<vk::Kernel> kernels[2][kPrivWriteK + 1];
+  // The exact-math kinds are calibrate_exmath.comp's (specialization constants 1 and 2; 0 is the prelude's).
+  std::unique_ptr<vk::Kernel> kernels[2][kExSqrtK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
-      const uint32_t spec[] = {kind, dependent};
-      kernels[dependent][kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout,
-                                                              sizeof(Push), std::span<const uint32_t>{}, spec);
+      if (kind >= kExDivK) {
+        const uint32_t spec[] = {~0u, kind - kExDivK, dependent};
+        kernels[dependent][kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, kSpv_calibrate_exmath_comp, layout,
+                                                                sizeof(Push), std::span<const uint32_t>{}, spec);
+      } else {
+        const uint32_t spec[] = {kind, dependent};
+        kernels[dependent][kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout,
+                                                                sizeof(Push), std::span<const uint32_t>{}, spec);
+      }
     }
     return *kernels[dependent][kind];
   };
@@ -324,6 +333,14 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       ops[model::kPrivateWrite] =
           1.0 / std::max(perRmw - 1.0 / ops[model::kFAdd] - 1.0 / ops[model::kPrivateRead], perRmw * 0.1);
     }
+    // The exact-math layer's division and square root, each the shared routine itself (calibrate_exmath.comp, 16 steps
+    // an iteration): a division a step; a square root and an fadd (whose share is removed) a step.
+    constexpr double kExSteps = 16.0;
+    ops[model::kExDiv] = rate(kExDivK, kExSteps, nearest->handle(), 1.0001f, 0.0f);
+    {
+      const double perStep = 1.0 / rate(kExSqrtK, kExSteps, nearest->handle(), 0.25f, 0.0f);
+      ops[model::kExSqrt] = 1.0 / std::max(perStep - 1.0 / ops[model::kFAdd], perStep * 0.5);
+    }
     {  // Latencies: the same kernels on one chain (DEPENDENT). Per chain step a device vector waits for the previous
        // step, so one core's step time is cores x lanes / (steps per second). Steps: fadd, fmul, imul (squaring) one
        // operation; ialu two dependent ones (xor, add); shift a shift then an add; cvt an fmul then two conversions;
@@ -346,6 +363,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       // indices do not depend on the values read).
       lat[model::kPrivateRead] = perCore / ops[model::kPrivateRead];
       lat[model::kPrivateWrite] = perCore / ops[model::kPrivateWrite];
+      // A division or square root on one chain of 16 (the square root's fadd latency removed).
+      lat[model::kExDiv] = perCore / rate(kExDivK, kExSteps, nearest->handle(), 1.0001f, 0.0f, 1);
+      lat[model::kExSqrt] = std::max(perCore / rate(kExSqrtK, kExSteps, nearest->handle(), 0.25f, 0.0f, 1) - lat[model::kFAdd],
+                                     0.5 * lat[model::kFAdd]);
       // The window: iterations independent of each other, each a chain of L = 64 dependent fadds. A core that keeps W
       // operations in flight overlaps W / L chains, so an iteration takes L^2 latency / W (never less than its issue
       // time, never more than L latency): W = L^2 latency / t. In counted 8-lane operations: W lanes / 8.
@@ -444,7 +465,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
        // same targets as each. The emulator under the device's profile counts their triangles and covered pixels; each
        // empty run's time is removed, and the two equations give the two rates.
       const emu::DeviceProfile& prof = emu::profileForDevice(ctx.deviceName());
-      struct Run { double seconds, triangles, fragments, vertexRuns, outside, spanning; };
+      struct Run { double seconds, triangles, fragments, vertexRuns, outside, spanning, partial; };
       auto sceneOf = [](Mesh mesh, uint32_t objects) {  // `objects` draws of the mesh, in place
         Scene sc;
         sc.meshes.push_back(std::move(mesh));
@@ -467,7 +488,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         shadowEmu(sc, dirs, size, prof, &st);
         return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
                    double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * maps * objects,
-                   double(st.raster.trianglesOutside), double(st.raster.trianglesSpanning)};
+                   double(st.raster.trianglesOutside), double(st.raster.trianglesSpanning), double(st.raster.partialBlocks)};
       };
       auto gbufferRun = [&](Mesh mesh, uint32_t size, uint32_t draws) {
         Scene sc = sceneOf(std::move(mesh), draws);
@@ -479,7 +500,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         gbufferEmu(sc, prof, &st);
         return Run{t, double(st.raster.trianglesIn), double(st.raster.fragments),
                    double(model::vertexCacheRuns(sc.meshes[0].indices, d.vertexCache)) * draws,
-                   double(st.raster.trianglesOutside), double(st.raster.trianglesSpanning)};
+                   double(st.raster.trianglesOutside), double(st.raster.trianglesSpanning), double(st.raster.partialBlocks)};
       };
       auto flat = [](Mesh m) {  // every vertex at the centre: zero-area triangles, the same bounds as a point
         for (auto& p : m.positions) p = {0.0f, 0.0f, 0.0f};
@@ -496,10 +517,12 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       // o: a's mesh out of the view (every triangle outside a clip plane; for the depth-only pipeline, whose maps enclose
       // the scene, a's own run: no triangle is outside); eMany, eFew: two empty runs that differ by `draws` draws.
       // m, m0: a's mesh into medium targets, where most of its triangles span a pixel-centre row (in a's 32^2 or 64^2
-      // targets most do not: the rasterizer drops them after set-up), and its empty run.
+      // targets most do not: the rasterizer drops them after set-up), and its empty run. c, c0: a's mesh into large
+      // targets (~16 pixels a triangle: several partly covered 4x4 blocks each, where m's hold a pixel and b's blocks
+      // are full), and its empty run.
       auto rates = [&](const char* name, const Run& a, const Run& s, const Run& a0, const Run& b, const Run& b0,
                        double targetBytes, const Run& o, const Run& eMany, const Run& eFew, double draws, const Run& m,
-                       const Run& m0) {
+                       const Run& m0, const Run& c, const Run& c0) {
         // A vertex routine run: the time a and s differ by, over the runs they differ by (0 where not simulated). The
         // triangle-bound equation below uses s, whose runs are the fewer (a noisy a - s moves it least), and the runs
         // never take more than three quarters of s's time (a contended run of a once left no time for the triangles).
@@ -510,6 +533,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         const double ta = std::max(tsRaw - sv * (s.vertexRuns - a0.vertexRuns), 1e-9),
                      tb = std::max(b.seconds - b0.seconds - sv * (b.vertexRuns - b0.vertexRuns), 1e-9);
         const double tm = std::max(m.seconds - m0.seconds - sv * (m.vertexRuns - m0.vertexRuns), 1e-9);
+        const double tc = std::max(c.seconds - c0.seconds - sv * (c.vertexRuns - c0.vertexRuns), 1e-9);
         // t = triangles s_t + spanning s_s + fragments s_f for s, m and b: Cramer's rule on the 3x3 system; where a cost
         // comes out non-positive (noise), the two-run solution without s_s (s and b), as before session 34.
         auto det3 = [](const double (&r)[3][3]) {
@@ -548,12 +572,58 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
           if (!(st > 0)) st = ta / s.triangles;
           if (!(sf > 0)) sf = tb / b.fragments;
         }
+        // Partly covered 4x4 blocks (session 37): with c, t = triangles s_t + spanning s_s + partial blocks s_b +
+        // fragments s_f for s, m, c and b (Gaussian elimination with partial pivoting). m's triangles hold a pixel (one
+        // partial block each), c's ~16 (~6 partial blocks), b's two a map cover it (full blocks but for its edges): the
+        // four tell the costs apart. Kept where every cost is positive (s_s, s_b non-negative); where the set-up comes out
+        // below an outside triangle's, the set-up is that and the rest comes from m, c and b; otherwise s_b = 0 and the
+        // three-run costs above.
+        double sb = 0.0;
+        {
+          // Gaussian elimination with partial pivoting on the n x n system [A | r]; false where it is singular.
+          auto solve = [](std::vector<std::vector<double>> M, std::vector<double>& x) {
+            const size_t n = M.size();
+            for (size_t k = 0; k < n; ++k) {
+              size_t p = k;
+              for (size_t i = k + 1; i < n; ++i)
+                if (std::fabs(M[i][k]) > std::fabs(M[p][k])) p = i;
+              if (std::fabs(M[p][k]) < 1e-30) return false;
+              std::swap(M[k], M[p]);
+              for (size_t i = 0; i < n; ++i) {
+                if (i == k) continue;
+                const double f = M[i][k] / M[k][k];
+                for (size_t j = k; j <= n; ++j) M[i][j] -= f * M[k][j];
+              }
+            }
+            x.resize(n);
+            for (size_t k = 0; k < n; ++k) x[k] = M[k][n] / M[k][k];
+            return true;
+          };
+          std::vector<double> y;
+          if (solve({{s.triangles, s.spanning, s.partial, s.fragments, ta}, {m.triangles, m.spanning, m.partial, m.fragments, tm},
+                     {c.triangles, c.spanning, c.partial, c.fragments, tc}, {b.triangles, b.spanning, b.partial, b.fragments, tb}},
+                    y) &&
+              y[0] > 0 && y[1] >= 0 && y[2] >= 0 && y[3] > 0) {
+            if (y[0] >= outsideCost) {
+              st = y[0], ss = y[1], sb = y[2], sf = y[3];
+            } else {  // the set-up at an outside triangle's cost, the rest from m, c and b
+              std::vector<double> z;
+              const double t0 = outsideCost;
+              if (solve({{m.spanning, m.partial, m.fragments, tm - t0 * m.triangles}, {c.spanning, c.partial, c.fragments, tc - t0 * c.triangles},
+                         {b.spanning, b.partial, b.fragments, tb - t0 * b.triangles}},
+                        z) &&
+                  z[0] >= 0 && z[1] >= 0 && z[2] > 0)
+                st = t0, ss = z[0], sb = z[1], sf = z[2];
+            }
+          }
+        }
         out << "  raster    " << name << ": " << s.triangles << " triangles (" << s.spanning << " spanning) + " << s.fragments
             << " pixels in " << ta * 1e3 << " ms; " << m.triangles << " triangles (" << m.spanning << " spanning) + "
             << m.fragments << " pixels in " << tm * 1e3 << " ms; " << b.triangles << " triangles + " << b.fragments
             << " pixels in " << tb * 1e3 << " ms; empty targets " << a0.seconds * 1e3 << " / " << m0.seconds * 1e3 << " / "
-            << b0.seconds * 1e3 << " ms: " << st * 1e9 << " ns per triangle, " << ss * 1e9 << " ns more per spanning one, "
-            << sf * 1e9 << " ns per pixel";
+            << b0.seconds * 1e3 << " ms; " << c.triangles << " triangles + " << c.partial << " partly covered 4x4 blocks + " << c.fragments
+            << " pixels in " << tc * 1e3 << " ms (empty " << c0.seconds * 1e3 << " ms): " << st * 1e9 << " ns per triangle, "
+            << ss * 1e9 << " ns more per spanning one, " << sb * 1e9 << " ns per partly covered 4x4 block, " << sf * 1e9 << " ns per pixel";
         if (d.vertexCache.entries)
           out << "; vertex runs " << a.vertexRuns << " in " << a.seconds * 1e3 << " ms vs " << s.vertexRuns << " strip-numbered in "
               << s.seconds * 1e3 << " ms: " << sv * 1e9 << " ns per run (excluded above)";
@@ -567,7 +637,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
             << " ms beyond the empty run: " << so * 1e9 << " ns per triangle; " << draws << " more empty draws "
             << (eMany.seconds - eFew.seconds) * 1e3 << " ms: " << sd * 1e6 << " us per draw\n";
         // The targets' clear + copy-out per byte (the large empty run less a launch).
-        return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv, so, sd, ss};
+        return model::RasterRates{1.0 / st, 1.0 / sf, targetBytes / std::max(b0.seconds - dispatch, 1e-9), sv, so, sd, ss, sb};
       };
       const uint32_t segs = opts.quick ? 128 : 256, rings = opts.quick ? 64 : 128;
       const Mesh sphere = makeSphere(segs, rings), strips = makeSphereStrips(segs, rings, 8);
@@ -580,8 +650,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         const Run e16 = depthRun(flat(makePlane()), small, smallMaps, objects);
         const uint32_t medium = opts.quick ? 256 : 512;  // ~6 pixels a triangle: most span a row
         const Run m = depthRun(sphere, medium, smallMaps), m0 = depthRun(flat(makePlane()), medium, smallMaps);
+        const uint32_t large = opts.quick ? 1024 : 2048, largeMaps = opts.quick ? 2 : 4;  // ~35 pixels a triangle
+        const Run c = depthRun(sphere, large, largeMaps), c0 = depthRun(flat(makePlane()), large, largeMaps);
         d.raster[model::kDepthOnly] = rates("depth-only", a, s, a0, b, b0, double(big) * big * 4 * bigMaps, a, e16, a0,
-                                            double(objects - 1) * smallMaps, m, m0);
+                                            double(objects - 1) * smallMaps, m, m0, c, c0);
       }
       {
         // The triangle-bound runs draw the sphere once (65k triangles; --quick 16k): a G-buffer pass is one render pass,
@@ -598,8 +670,9 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         const Run o = gbufferRun(away, small, 1), eMany = gbufferRun(flat(makePlane()), small, draws);
         const uint32_t medium = opts.quick ? 256 : 512;
         const Run m = gbufferRun(sphere, medium, 1), m0 = gbufferRun(flat(makePlane()), medium, 1);
+        const Run c = gbufferRun(sphere, big, 1), c0 = gbufferRun(flat(makePlane()), big, 1);  // ~10 pixels a triangle
         d.raster[model::kGbufferRaster] = rates("G-buffer", a, s, a0, b, b0, double(big) * big * (kGbufFloats * 4 + 4), o,
-                                                eMany, a0, double(draws - 1), m, m0);
+                                                eMany, a0, double(draws - 1), m, m0, c, c0);
       }
     }
     d.provenance = std::string("shadetwin calibrate") + (opts.quick ? " --quick" : "") + " on this machine (" +

@@ -148,7 +148,7 @@ std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, co
         << c.ops[opcount::kTexStreamMiss] / inv << "); "
         << c.invocations << " invocations, " << c.dispatches
         << (c.triangles ? " draws" : " dispatches");
-    if (c.triangles) log << ", " << c.triangles << " triangles, " << c.fragments << " fragments, " << c.helperLanes << " helper lanes, "
+    if (c.triangles) log << ", " << c.triangles << " triangles, " << c.fragments << " fragments, " << c.blocks << " 4x4 blocks (" << c.partialBlocks << " partly covered), " << c.helperLanes << " helper lanes, "
                          << c.vertexRuns << " vertex runs, " << c.spanningTriangles << " triangles spanning a pixel row, "
                          << c.outsideTriangles << " outside a clip plane, " << c.culledTriangles << " rejected at set-up";
     log << "\n";

@@ -10,6 +10,12 @@ namespace shadetwin {
 /// flushDenormals runs the code with FTZ/DAZ set, as a stage whose device flushes (lavapipe fragment).
 void evalMathKernel(int fn, const float* in, float* out, size_t n, int lanes, bool flushDenormals = false);
 
+/// The exact-math layer's division a[i] / b[i] and square root sqrt(x[i]) (shade/exact_math.h exDiv, exSqrt: correctly
+/// rounded, the bits the portable routine gives on every device), n lanes through the x8 build (n = 1: the scalar
+/// build). The performance model's counting lanes take their values from here (model/op_count.h).
+void exactDivLanes(const float* a, const float* b, float* out, size_t n);
+void exactSqrtLanes(const float* x, float* out, size_t n);
+
 /// Number of verify-math kernels and their names.
 int mathKernelCount();
 const char* mathKernelName(int fn);

@@ -97,12 +97,13 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
     const std::string where = std::string("raster.") + kRasterPipelineNames[r] + ".";
     const json& x = j.at("raster").at(kRasterPipelineNames[r]);
     checkKeys(x, {"triangles_per_second", "fragments_per_second", "target_bytes_per_second", "vertex_run_seconds",
-                  "outside_triangle_seconds", "draw_seconds", "spanning_triangle_seconds"}, path, where);
+                  "outside_triangle_seconds", "draw_seconds", "spanning_triangle_seconds", "partial_block_seconds"}, path, where);
     d.raster[size_t(r)] = {positive(x, "triangles_per_second", path, where), positive(x, "fragments_per_second", path, where),
                            positive(x, "target_bytes_per_second", path, where),
                            nonNegative(x, "vertex_run_seconds", path, where),
                            nonNegative(x, "outside_triangle_seconds", path, where), nonNegative(x, "draw_seconds", path, where),
-                           nonNegative(x, "spanning_triangle_seconds", path, where)};
+                           nonNegative(x, "spanning_triangle_seconds", path, where),
+                           nonNegative(x, "partial_block_seconds", path, where)};
   }
   {
     const json& v = j.at("vertex_cache");
@@ -144,7 +145,8 @@ std::string deviceDescJson(const DeviceDesc& d) {
                                        {"vertex_run_seconds", d.raster[size_t(r)].vertexRunSeconds},
                                        {"outside_triangle_seconds", d.raster[size_t(r)].outsideTriangleSeconds},
                                        {"draw_seconds", d.raster[size_t(r)].drawSeconds},
-                                       {"spanning_triangle_seconds", d.raster[size_t(r)].spanningTriangleSeconds}};
+                                       {"spanning_triangle_seconds", d.raster[size_t(r)].spanningTriangleSeconds},
+                                       {"partial_block_seconds", d.raster[size_t(r)].partialBlockSeconds}};
   json j = {{"device", d.device},
             {"name", d.name},
             {"verified", d.verified},

@@ -20,9 +20,19 @@ namespace shadetwin::model {
 // load per lane (lp_bld_nir_soa.c build_gather) and a write to a load, select and store per lane (emit_mask_scatter);
 // calibrate's private-array kernels measure both (read-only; read, add, write). A GPU keeps such an array in local
 // memory: its load/store units (the public-figure files).
-enum OpClass { kFAdd, kFMul, kIAlu, kIMul, kCvt, kSelect, kFCmp, kShift, kICmp, kISelect, kPrivateRead, kPrivateWrite, kOpClasses };
+// ex_div, ex_sqrt: one correctly rounded division or square root of the exact-math layer (shade/exact_math.h
+// exDivPortable, exSqrtPortable: 164 and 101 operations of the classes above, straight-line), a class of its own because
+// what a device makes of that mix is not the sum of its parts: lavapipe ran a division at 2.5-3x the price of its
+// counted operations (probes, docs/RESULTS.md session 36). Software devices: calibrate's kernels run the shared routine
+// itself (src/shaders/calibrate_exmath.comp, optimised like the shading modules). GPUs: the routine's operation mix
+// (model/pass_counts.h exactMathMix) at the per-class rates of the public figures.
+enum OpClass {
+  kFAdd, kFMul, kIAlu, kIMul, kCvt, kSelect, kFCmp, kShift, kICmp, kISelect, kPrivateRead, kPrivateWrite, kExDiv, kExSqrt,
+  kOpClasses
+};
 inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd",  "fmul",  "ialu", "imul",    "cvt",          "select",
-                                                          "fcmp",  "shift", "icmp", "iselect", "private_read", "private_write"};
+                                                          "fcmp",  "shift", "icmp", "iselect", "private_read", "private_write",
+                                                          "ex_div", "ex_sqrt"};
 /// Texture filters the model distinguishes (RGBA32F lookups).
 // uniform: a texelFetch at coordinates every lane of the invocation group shares (shade/prelude.h texelFetchUniform),
 // per lane.
@@ -49,11 +59,17 @@ inline constexpr const char* kRasterPipelineNames[kRasterPipelines] = {"depth_on
 // walking it (calibrate: the triangle-bound sphere into targets where its triangles span rows, against the same sphere
 // into 32^2 ones, where most do not; lavapipe 2026-12: the bunny's shadow maps cost ~0.22 us a triangle against
 // calibrate's ~0.07 us from the 32^2 run alone).
+// partialBlockSeconds: a 4x4 pixel block a triangle covers only partly (emu RasterStats partialBlocks), beyond its
+// pixels: llvmpipe tests the triangle's edges per pixel of such a stamp before shading it, and shades a full one as is
+// (calibrate: a fourth run, the sphere into 2048^2 targets, ~16 pixels and ~6 partial stamps a triangle; session 37:
+// the bunny's shadow maps, 6-93 pixels a triangle, had cost ~2x what calibrate's one-pixel triangles and fully covered
+// planes predicted). GPUs: 0 (in the pixel rate).
 struct RasterRates {
   double trianglesPerSecond = 0.0, fragmentsPerSecond = 0.0, targetBytesPerSecond = 0.0;
   double vertexRunSeconds = 0.0;
   double outsideTriangleSeconds = 0.0, drawSeconds = 0.0;
   double spanningTriangleSeconds = 0.0;
+  double partialBlockSeconds = 0.0;
 };
 
 /// A driver's post-transform vertex cache, as the model simulates it over each draw's index stream

@@ -19,6 +19,8 @@ OpClass classOf(opcount::Kind k) {
     case opcount::kISel: return kISelect;
     case opcount::kPrivRead: return kPrivateRead;
     case opcount::kPrivWrite: return kPrivateWrite;
+    case opcount::kExDiv: return kExDiv;
+    case opcount::kExSqrt: return kExSqrt;
     default: return kIAlu;  // integer ALU and mask logic
   }
 }
@@ -41,6 +43,16 @@ CoreModel coreModel(const DeviceDesc& d) {
     m.latency[size_t(k)] = d.latencySeconds[size_t(c)];
   }
   m.window = uint32_t(std::max(1.0, std::round(d.windowOps)));
+  // An exact division or square root is many device operations: it holds as many window entries as keep
+  // window / slots of them in flight, the overlap calibrate's independent chains reached (interval) against its
+  // dependent chain (latency): slots = window x interval / latency, at most the operations its routine counts.
+  for (opcount::Kind k : {opcount::kExDiv, opcount::kExSqrt}) {
+    const auto mix = exactMathMix(k);
+    uint64_t n = 0;
+    for (int j = 0; j < opcount::kTexLookup; ++j) n += mix[size_t(j)];
+    const double fit = m.latency[size_t(k)] > 0 ? double(m.window) * m.interval[size_t(k)] / m.latency[size_t(k)] : 1.0;
+    m.slots[size_t(k)] = uint32_t(std::clamp(std::floor(fit), 1.0, double(std::max<uint64_t>(n, 1))));
+  }
   m.cacheLineBytes = uint32_t(std::max(1, d.cacheLineBytes));
   m.cacheBytes = d.cacheBytes;
   m.vertexCache = d.vertexCache;
@@ -78,7 +90,7 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   const uint64_t outside = std::min(c.outsideTriangles, c.triangles);
   p.rasterSeconds = double(c.triangles - outside) / r.trianglesPerSecond + double(outside) * r.outsideTriangleSeconds +
                     double(std::min(c.spanningTriangles, c.triangles - outside)) * r.spanningTriangleSeconds +
-                    double(c.fragments) / r.fragmentsPerSecond +
+                    double(c.fragments) / r.fragmentsPerSecond + double(c.partialBlocks) * r.partialBlockSeconds +
                     double(c.attachmentBytes) / r.targetBytesPerSecond + double(c.vertexRuns) * r.vertexRunSeconds;
   // A raster pass is one submission of its draws: the first costs a dispatch, each further draw the pipeline's draw cost.
   const double submissions = c.triangles ? 1.0 : double(std::max<uint64_t>(c.dispatches, 1));

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "emu/lanes.h"
+#include "lanes/kernels.h"
 #include "lanes/native_exact.h"
 #include "lanes/sampler_bridge.h"
 #include "lanes/vec.h"
@@ -22,12 +23,16 @@ namespace opcount {
 // kPrivRead, kPrivWrite: a private (function-local) array read or written at an index that is not a literal (the
 // dialect's arrayGet / arraySet, shade/prelude.h): lavapipe's gallivm lowers each to a scalar load per lane, a store to
 // a load, select and store per lane; a GPU to local memory. Counted like the ALU kinds (per vector operation).
+// kExDiv, kExSqrt: one vector of the exact-math layer's correctly rounded divisions or square roots (shade/exact_math.h
+// exDiv, exSqrt; exInverseSqrt and exNormalize are one of each), counted as one operation of a class of their own
+// (model/device_desc.h ex_div, ex_sqrt) rather than as the 164 and 101 operations of the portable routine
+// (exactMathMix counts those: the GPUs' rate and the scheduler's window share).
 enum Kind {
-  kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kShift, kICmp, kISel, kPrivRead, kPrivWrite,
+  kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kShift, kICmp, kISel, kPrivRead, kPrivWrite, kExDiv, kExSqrt,
   kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kTexLine, kTexMiss, kTexStreamMiss, kKinds
 };
 inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "shift", "icmp", "iselect",
-                                          "private_read", "private_write", "tex_lookup", "texel",
+                                          "private_read", "private_write", "ex_div", "ex_sqrt", "tex_lookup", "texel",
                                           "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform", "tex_line",
                                           "tex_miss", "tex_stream_miss"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
@@ -39,10 +44,18 @@ inline void tick(Kind k, uint64_t n = 1) { counts[size_t(k)] += n; }
 // once the one `window` earlier has retired), each starts when its operands are ready and takes its kind's latency;
 // retirement is in order. Every counted value carries the time it is ready (`t`); values from memory or constants are
 // ready at once. Off unless a counted run switches it on; it never changes a computed bit.
+// slots: the window entries an operation of that kind holds (1; an exact division or square root holds as many as the
+// operations its portable routine counts, which the device keeps in flight as its own).
 struct Scheduler {
   bool on = false;
   std::array<double, kKinds> latency{}, interval{};
+  std::array<uint32_t, kKinds> slots = ones();
   uint32_t window = 256;
+  static std::array<uint32_t, kKinds> ones() {
+    std::array<uint32_t, kKinds> a{};
+    a.fill(1);
+    return a;
+  }
   std::vector<double> retired;  // retire time of the last `window` operations (a ring)
   uint64_t n = 0;
   double dispatch = 0, lastRetire = 0;
@@ -51,13 +64,17 @@ struct Scheduler {
     n = 0, dispatch = 0, lastRetire = 0;
   }
   double issue(Kind k, double ready) {
+    // The operation takes entries n .. n + slots - 1: it dispatches once the operation `window` entries before its last
+    // one has retired (retire times are in order, so that is the latest of those its entries wait for).
+    const uint32_t w = std::min(std::max(slots[size_t(k)], 1u), window);
+    const uint64_t last = n + w - 1;
     double d = dispatch;
-    if (n >= window) d = std::max(d, retired[n % window]);
+    if (last >= window) d = std::max(d, retired[last % window]);
     const double done = std::max(d, ready) + latency[size_t(k)];
     dispatch = d + interval[size_t(k)];
     lastRetire = std::max(lastRetire, done);
-    retired[n % window] = lastRetire;
-    ++n;
+    for (uint32_t i = 0; i < w; ++i) retired[(n + i) % window] = lastRetire;
+    n += w;
     return done;
   }
 };
@@ -400,11 +417,34 @@ void uintFetchLanes(const USampler2DArray& s, opcount::I<N> x, opcount::I<N> y, 
 }
 }  // namespace shadetwin::shade
 
-// The counted build counts the portable recurrences (what a GPU runs), not the emulator's native
-// fast paths (lanes/native_exact.h).
+// The counted build's exact division and square root (shade/exact_math.h exDiv, exSqrt, through their C++-only fast
+// path): one ex_div or ex_sqrt operation, its value the emulator's own (lanes/kernels.h exactDivLanes: the same
+// correctly rounded bits as the portable routine a GPU runs). With opcount::countPortableExactMath set, the fast path
+// is off and the portable routine's own operations count instead (exactMathMix: the classes it is made of).
+namespace opcount {
+inline thread_local bool countPortableExactMath = false;
+}
 namespace shadetwin::shade {
 template <int N>
-inline NativeResult<opcount::F<N>> nativeDiv(opcount::F<N>, opcount::F<N>) { return {false, opcount::F<N>(0.0f)}; }
+inline NativeResult<opcount::F<N>> nativeDiv(opcount::F<N> a, opcount::F<N> b) {
+  if (opcount::countPortableExactMath) return {false, opcount::F<N>(0.0f)};
+  float xa[N], xb[N], q[N];
+  for (int i = 0; i < N; ++i) xa[i] = a.x[i], xb[i] = b.x[i];
+  exactDivLanes(xa, xb, q, N);
+  opcount::F<N> r(0.0f);
+  for (int i = 0; i < N; ++i) r.x.set(i, q[i]);
+  r.t = opcount::op(opcount::kExDiv, a.t, b.t);
+  return {true, r};
+}
 template <int N>
-inline NativeResult<opcount::F<N>> nativeSqrt(opcount::F<N>) { return {false, opcount::F<N>(0.0f)}; }
+inline NativeResult<opcount::F<N>> nativeSqrt(opcount::F<N> x) {
+  if (opcount::countPortableExactMath) return {false, opcount::F<N>(0.0f)};
+  float xs[N], q[N];
+  for (int i = 0; i < N; ++i) xs[i] = x.x[i];
+  exactSqrtLanes(xs, q, N);
+  opcount::F<N> r(0.0f);
+  for (int i = 0; i < N; ++i) r.x.set(i, q[i]);
+  r.t = opcount::op(opcount::kExSqrt, x.t);
+  return {true, r};
+}
 }  // namespace shadetwin::shade

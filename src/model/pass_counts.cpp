@@ -55,7 +55,9 @@ void addPipeline(PassCounts& c, const uint32_t (&module)[N]) {
 void addRaster(PassCounts& c, const emu::RasterStats& r) {
   c.triangles += r.trianglesIn;
   c.fragments += r.fragments;
+  c.blocks += r.blocks;
   c.spanningTriangles += r.trianglesSpanning;
+  c.partialBlocks += r.partialBlocks;
   c.outsideTriangles += r.trianglesOutside;
   c.culledTriangles += r.trianglesCulled;
   c.helperLanes += 4 * r.quads - r.fragments;
@@ -87,6 +89,7 @@ void accumulate(PassCounts& into, const PassCounts& c) {
   into.invocations += c.invocations, into.dispatches += c.dispatches, into.pipelines += c.pipelines, into.pipelineWords += c.pipelineWords;
   into.workgroups += c.workgroups;
   into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.bytesReread += c.bytesReread, into.rasterBytes += c.rasterBytes, into.scheduledSeconds += c.scheduledSeconds;
+  into.blocks += c.blocks, into.partialBlocks += c.partialBlocks;
 }
 
 }  // namespace
@@ -102,7 +105,7 @@ std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& 
     opcount::Scheduler& s = opcount::sched;
     s.on = core.on;
     if (core.on) {
-      s.latency = core.latency, s.interval = core.interval, s.window = std::max(1u, core.window);
+      s.latency = core.latency, s.interval = core.interval, s.slots = core.slots, s.window = std::max(1u, core.window);
       s.start();
     }
     f();

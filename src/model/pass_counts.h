@@ -41,6 +41,9 @@ struct PassCounts {
   // and its "bandwidth" is the price of a shader's storage-buffer access (DESIGN §13), which neither is.
   uint64_t rasterBytes = 0;
   uint64_t triangles = 0, fragments = 0, helperLanes = 0;  // raster passes: triangles in, covered pixels, quad helpers
+  // raster passes: per triangle, the 4x4 pixel blocks it covers a pixel of, and of those the ones it covers only partly
+  // (emu RasterStats::blocks, partialBlocks)
+  uint64_t blocks = 0, partialBlocks = 0;
   RasterPipeline rasterPipeline = kDepthOnly;              // raster passes: whose rates they run at
   uint64_t spanningTriangles = 0;  // raster passes: triangles whose extent holds a pixel-centre row (emu RasterStats)
   // raster passes: triangles entirely outside one clip plane (rejected before set-up) and triangles set-up rejected
@@ -59,6 +62,7 @@ struct CoreModel {
   bool foldsSpecConstants = true;  // opcount::foldsSpecConstants
   bool on = false;
   std::array<double, opcount::kKinds> latency{}, interval{};
+  std::array<uint32_t, opcount::kKinds> slots = opcount::Scheduler::ones();  // window entries per operation
   uint32_t window = 256;
   // The texture cache of the counted run (opcount::TexCache): the device's line size and capacity (0: no capacity
   // given, lines are counted and no miss is).
@@ -71,6 +75,10 @@ struct CoreModel {
 /// With `core` on, the run is also scheduled and `scheduledSeconds` receives one core's time.
 std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& f, const CoreModel& core = {},
                                                    double* scheduledSeconds = nullptr);
+/// The operations, by kind, of one vector of the exact-math layer's portable division (k = kExDiv) or square root
+/// (kExSqrt) (shade/exact_math.h exDivPortable, exSqrtPortable: straight-line, the same for every operand): what one
+/// counted ex_div or ex_sqrt operation stands for on a GPU, and the window entries it holds on a software core.
+std::array<uint64_t, opcount::kKinds> exactMathMix(opcount::Kind k);
 /// Adds ticks of a run whose vectors have `lanes` lanes (ALU kinds are multiplied, texture kinds are per lane).
 void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks, double lanes);
 

@@ -81,5 +81,23 @@ PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInput
   return c;
 }
 
+std::array<uint64_t, opcount::kKinds> exactMathMix(opcount::Kind k) {
+  if (k != opcount::kExDiv && k != opcount::kExSqrt) throw std::invalid_argument("exactMathMix: kExDiv or kExSqrt");
+  opcount::countPortableExactMath = true;
+  const auto t = countedTicks([&] {
+    // Operands of every kind (normal, subnormal, zero, inf, NaN): the routine is straight-line, the count the same.
+    opcount::F<8> a(0.0f), b(0.0f);
+    const float va[8] = {1.5f, 3.0e-39f, 0.0f, 1e30f, -2.0f, INFINITY, NAN, 7.0f};
+    const float vb[8] = {3.0f, 2.0f, 5.0f, 1e-30f, 0.0f, 1.0f, 1.0f, -INFINITY};
+    for (int i = 0; i < 8; ++i) a.set(i, va[i]), b.set(i, vb[i]);
+    if (k == opcount::kExDiv)
+      shade::counted::exDiv(a, b);
+    else
+      shade::counted::exSqrt(a);
+  });
+  opcount::countPortableExactMath = false;
+  return t;
+}
+
 }  // namespace model
 }  // namespace shadetwin
