@@ -85,15 +85,13 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   std::unique_ptr<vk::Kernel> kernels[2][kExSqrtK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
-      if (kind >= kExDivK) {
-        const uint32_t spec[] = {~0u, kind - kExDivK, dependent};
-        kernels[dependent][kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, kSpv_calibrate_exmath_comp, layout,
-                                                                sizeof(Push), std::span<const uint32_t>{}, spec);
-      } else {
-        const uint32_t spec[] = {kind, dependent};
-        kernels[dependent][kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, kSpv_calibrate_comp, layout,
-                                                                sizeof(Push), std::span<const uint32_t>{}, spec);
-      }
+      const bool ex = kind >= kExDivK;
+      const uint32_t spec[] = {ex ? ~0u : kind, ex ? kind - kExDivK : dependent, dependent};
+      const std::span<const uint32_t> module = ex ? std::span<const uint32_t>(kSpv_calibrate_exmath_comp)
+                                                  : std::span<const uint32_t>(kSpv_calibrate_comp);
+      kernels[dependent][kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, module, layout, sizeof(Push),
+                                                              std::span<const uint32_t>{},
+                                                              std::span<const uint32_t>(spec, ex ? 3 : 2));
     }
     return *kernels[dependent][kind];
   };
@@ -534,23 +532,32 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
                      tb = std::max(b.seconds - b0.seconds - sv * (b.vertexRuns - b0.vertexRuns), 1e-9);
         const double tm = std::max(m.seconds - m0.seconds - sv * (m.vertexRuns - m0.vertexRuns), 1e-9);
         const double tc = std::max(c.seconds - c0.seconds - sv * (c.vertexRuns - c0.vertexRuns), 1e-9);
-        // t = triangles s_t + spanning s_s + fragments s_f for s, m and b: Cramer's rule on the 3x3 system; where a cost
-        // comes out non-positive (noise), the two-run solution without s_s (s and b), as before session 34.
-        auto det3 = [](const double (&r)[3][3]) {
-          return r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) - r[0][1] * (r[1][0] * r[2][2] - r[1][2] * r[2][0]) +
-                 r[0][2] * (r[1][0] * r[2][1] - r[1][1] * r[2][0]);
+        // Gaussian elimination with partial pivoting on the n x n system [A | r]; false where it is singular.
+        auto solve = [](std::vector<std::vector<double>> M, std::vector<double>& x) {
+          const size_t n = M.size();
+          for (size_t k = 0; k < n; ++k) {
+            size_t p = k;
+            for (size_t i = k + 1; i < n; ++i)
+              if (std::fabs(M[i][k]) > std::fabs(M[p][k])) p = i;
+            if (std::fabs(M[p][k]) < 1e-30) return false;
+            std::swap(M[k], M[p]);
+            for (size_t i = 0; i < n; ++i) {
+              if (i == k) continue;
+              const double f = M[i][k] / M[k][k];
+              for (size_t j = k; j <= n; ++j) M[i][j] -= f * M[k][j];
+            }
+          }
+          x.resize(n);
+          for (size_t k = 0; k < n; ++k) x[k] = M[k][n] / M[k][k];
+          return true;
         };
-        const double A[3][3] = {{s.triangles, s.spanning, s.fragments}, {m.triangles, m.spanning, m.fragments},
-                                {b.triangles, b.spanning, b.fragments}};
-        const double rhs[3] = {ta, tm, tb};
-        double x[3];
-        const double D = det3(A);
-        for (int k = 0; k < 3; ++k) {
-          double Ak[3][3];
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j) Ak[i][j] = j == k ? rhs[i] : A[i][j];
-          x[k] = det3(Ak) / D;
-        }
+        // t = triangles s_t + spanning s_s + fragments s_f for s, m and b (the 3x3 system); where it is singular or a cost
+        // comes out non-positive (noise), the two-run solution without s_s (s and b), as before session 34.
+        std::vector<double> x;
+        if (!solve({{s.triangles, s.spanning, s.fragments, ta}, {m.triangles, m.spanning, m.fragments, tm},
+                    {b.triangles, b.spanning, b.fragments, tb}},
+                   x))
+          x.assign(3, 0.0);
         double st = x[0], ss = x[1], sf = x[2];
         // A triangle in view does all that one outside a clip plane does (fetch, vertex routine, clip) and more: where
         // the solution prices a set-up below an outside triangle (lavapipe's G-buffer, whose set-ups without a row are
@@ -580,25 +587,6 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         // three-run costs above.
         double sb = 0.0;
         {
-          // Gaussian elimination with partial pivoting on the n x n system [A | r]; false where it is singular.
-          auto solve = [](std::vector<std::vector<double>> M, std::vector<double>& x) {
-            const size_t n = M.size();
-            for (size_t k = 0; k < n; ++k) {
-              size_t p = k;
-              for (size_t i = k + 1; i < n; ++i)
-                if (std::fabs(M[i][k]) > std::fabs(M[p][k])) p = i;
-              if (std::fabs(M[p][k]) < 1e-30) return false;
-              std::swap(M[k], M[p]);
-              for (size_t i = 0; i < n; ++i) {
-                if (i == k) continue;
-                const double f = M[i][k] / M[k][k];
-                for (size_t j = k; j <= n; ++j) M[i][j] -= f * M[k][j];
-              }
-            }
-            x.resize(n);
-            for (size_t k = 0; k < n; ++k) x[k] = M[k][n] / M[k][k];
-            return true;
-          };
           std::vector<double> y;
           if (solve({{s.triangles, s.spanning, s.partial, s.fragments, ta}, {m.triangles, m.spanning, m.partial, m.fragments, tm},
                      {c.triangles, c.spanning, c.partial, c.fragments, tc}, {b.triangles, b.spanning, b.partial, b.fragments, tb}},

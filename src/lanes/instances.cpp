@@ -53,32 +53,32 @@ void evalMathKernel(int fn, const float* in, float* out, size_t n, int lanes, bo
   }
 }
 
-void exactDivLanes(const float* a, const float* b, float* out, size_t n) {
+namespace {
+// f(a, b) on n lanes: the scalar build for one, else the x8 build 8 at a time (a tail padded with 1 and cut off).
+template <class Scalar, class X8>
+void binaryLanes(Scalar scalar, X8 x8, const float* a, const float* b, float* out, size_t n) {
   if (n == 1) {
-    out[0] = shade::scalar::exDiv(a[0], b[0]);
+    out[0] = scalar(a[0], b[0]);
     return;
   }
   for (size_t base = 0; base < n; base += 8) {
     emu::F32<8> va(1.0f), vb(1.0f);
     const size_t count = std::min<size_t>(8, n - base);
     for (size_t l = 0; l < count; ++l) va.set(int(l), a[base + l]), vb.set(int(l), b[base + l]);
-    const emu::F32<8> q = shade::x8::exDiv(va, vb);
-    for (size_t l = 0; l < count; ++l) out[base + l] = q[int(l)];
+    const emu::F32<8> r = x8(va, vb);
+    for (size_t l = 0; l < count; ++l) out[base + l] = r[int(l)];
   }
+}
+}  // namespace
+
+void exactDivLanes(const float* a, const float* b, float* out, size_t n) {
+  binaryLanes([](float x, float y) { return shade::scalar::exDiv(x, y); },
+              [](emu::F32<8> x, emu::F32<8> y) { return shade::x8::exDiv(x, y); }, a, b, out, n);
 }
 
 void exactSqrtLanes(const float* x, float* out, size_t n) {
-  if (n == 1) {
-    out[0] = shade::scalar::exSqrt(x[0]);
-    return;
-  }
-  for (size_t base = 0; base < n; base += 8) {
-    emu::F32<8> v(1.0f);
-    const size_t count = std::min<size_t>(8, n - base);
-    for (size_t l = 0; l < count; ++l) v.set(int(l), x[base + l]);
-    const emu::F32<8> r = shade::x8::exSqrt(v);
-    for (size_t l = 0; l < count; ++l) out[base + l] = r[int(l)];
-  }
+  binaryLanes([](float v, float) { return shade::scalar::exSqrt(v); },
+              [](emu::F32<8> v, emu::F32<8>) { return shade::x8::exSqrt(v); }, x, x, out, n);
 }
 
 int mathKernelCount() { return shade::scalar::kMathCount; }

@@ -81,8 +81,8 @@ PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInput
   return c;
 }
 
-std::array<uint64_t, opcount::kKinds> exactMathMix(opcount::Kind k) {
-  if (k != opcount::kExDiv && k != opcount::kExSqrt) throw std::invalid_argument("exactMathMix: kExDiv or kExSqrt");
+namespace {
+std::array<uint64_t, opcount::kKinds> countExactMath(opcount::Kind k) {
   opcount::countPortableExactMath = true;
   const auto t = countedTicks([&] {
     // Operands of every kind (normal, subnormal, zero, inf, NaN): the routine is straight-line, the count the same.
@@ -97,6 +97,14 @@ std::array<uint64_t, opcount::kKinds> exactMathMix(opcount::Kind k) {
   });
   opcount::countPortableExactMath = false;
   return t;
+}
+}  // namespace
+
+std::array<uint64_t, opcount::kKinds> exactMathMix(opcount::Kind k) {
+  if (k != opcount::kExDiv && k != opcount::kExSqrt) throw std::invalid_argument("exactMathMix: kExDiv or kExSqrt");
+  // Straight-line routines: counted once (coreModel asks for them on every counted frame).
+  static const std::array<uint64_t, opcount::kKinds> div = countExactMath(opcount::kExDiv), sqrt = countExactMath(opcount::kExSqrt);
+  return k == opcount::kExDiv ? div : sqrt;
 }
 
 }  // namespace model
