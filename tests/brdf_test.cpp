@@ -317,10 +317,16 @@ TEST(Brdf, SimdBuildAgreesWithScalarBitForBit) {
     P.kind = kind;
     const x8::BrdfSample s = x8::sampleBrdf(P, wo, u);
     const F pdf = x8::brdfPdf(P, wo, s.wi);
+    const shadetwin::shade::V3<F> dir = x8::sampleBrdfDirection(P, wo, u);
     for (int l = 0; l < 8; ++l) {
       const sc::BrdfSample r = sc::sampleBrdf(ps[l], wos[l], us[l]);
       ASSERT_TRUE(shadetwin::sameBits(r.wi.x, s.wi.x[l]) && shadetwin::sameBits(r.wi.y, s.wi.y[l]) &&
                   shadetwin::sameBits(r.wi.z, s.wi.z[l]));
+      // The direction-only sampler (the MIS techniques' BRDF strategy) draws the same direction, both builds.
+      const V3f d = sc::sampleBrdfDirection(ps[l], wos[l], us[l]);
+      ASSERT_TRUE(shadetwin::sameBits(r.wi.x, d.x) && shadetwin::sameBits(r.wi.y, d.y) && shadetwin::sameBits(r.wi.z, d.z));
+      ASSERT_TRUE(shadetwin::sameBits(r.wi.x, dir.x[l]) && shadetwin::sameBits(r.wi.y, dir.y[l]) &&
+                  shadetwin::sameBits(r.wi.z, dir.z[l]));
       ASSERT_TRUE(shadetwin::sameBits(r.pdf, s.pdf[l]));
       ASSERT_TRUE(shadetwin::sameBits(r.weight, s.weight[l]));
       ASSERT_TRUE(shadetwin::sameBits(sc::brdfPdf(ps[l], wos[l], r.wi), pdf[l]));

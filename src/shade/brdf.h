@@ -82,7 +82,15 @@ struct LobeSample {
   Float pdf;
 };
 
-LobeSample sampleCosineLobe(Float3 a, Float e, Float2 u) {
+// The draw is split from its pdf so that a caller that needs only the direction (the MIS techniques' BRDF strategy,
+// which weighs a direction by brdfPdf) computes only that: the split changes no bit of either.
+struct LobeDraw {
+  Float3 w;
+  Float lu;  // log2(u.x)
+  Float e1;  // e + 1
+};
+
+LobeDraw drawCosineLobe(Float3 a, Float e, Float2 u) {
   PRECISE Float e1 = e + 1.0f;
   PRECISE Float lu = exLog2(u.x);
   PRECISE Float z = exDiv(lu, e1);
@@ -90,8 +98,17 @@ LobeSample sampleCosineLobe(Float3 a, Float e, Float2 u) {
   PRECISE Float omc = oneMinusExp2(z);
   PRECISE Float s = exSqrt(omc * (2.0f - omc));
   Float3 w = basisToWorld(basisAbout(a), sphericalDirection(s, c, u.y));
-  PRECISE Float pdf = e1 * kBrdfInvTwoPi * exExp2(exDiv(lu * e, e1));
-  return LobeSample(w, pdf);
+  return LobeDraw(w, lu, e1);
+}
+
+Float drawnLobePdf(LobeDraw d, Float e) {
+  PRECISE Float pdf = d.e1 * kBrdfInvTwoPi * exExp2(exDiv(d.lu * e, d.e1));
+  return pdf;
+}
+
+LobeSample sampleCosineLobe(Float3 a, Float e, Float2 u) {
+  LobeDraw d = drawCosineLobe(a, e, u);
+  return LobeSample(d.w, drawnLobePdf(d, e));
 }
 
 Float cosineLobePdf(Float3 a, Float e, Float3 w) {
@@ -118,6 +135,12 @@ Float phongEval(Float3 wo, Float e, Float3 wi) {
 }
 
 // ---- Blinn-Phong ----
+Float3 sampleBlinnDirection(Float3 wo, Float e, Float2 u) {
+  LobeDraw h = drawCosineLobe(Float3(0.0f, 0.0f, 1.0f), e, u);
+  PRECISE Float oh = dot(wo, h.w);
+  return reflectAbout(wo, h.w, oh);
+}
+
 BrdfSample sampleBlinn(Float3 wo, Float e, Float2 u) {
   LobeSample h = sampleCosineLobe(Float3(0.0f, 0.0f, 1.0f), e, u);
   PRECISE Float oh = dot(wo, h.w);
@@ -145,7 +168,14 @@ Float blinnEval(Float3 wo, Float e, Float3 wi) {
 }
 
 // ---- Ward ----
-BrdfSample sampleWard(Float3 wo, Float ax, Float ay, Float2 u) {
+struct HalfDraw {
+  Float3 wi;
+  Float ch;  // cos(theta_h)
+  Float oh;  // wo.h
+  Float t2;  // tan^2(theta_h)
+};
+
+HalfDraw drawWard(Float3 wo, Float ax, Float ay, Float2 u) {
   XmSinCos sc = exSinCos2Pi(u.y);
   PRECISE Float X = ax * sc.c;
   PRECISE Float Y = ay * sc.s;
@@ -156,7 +186,14 @@ BrdfSample sampleWard(Float3 wo, Float ax, Float ay, Float2 u) {
   PRECISE Float sh = exSqrt(t2) * ch;
   PRECISE Float3 h = Float3(sh * (X * invL), sh * (Y * invL), ch);
   PRECISE Float oh = dot(wo, h);
-  Float3 wi = reflectAbout(wo, h, oh);
+  return HalfDraw(reflectAbout(wo, h, oh), ch, oh, t2);
+}
+
+BrdfSample sampleWard(Float3 wo, Float ax, Float ay, Float2 u) {
+  HalfDraw d = drawWard(wo, ax, ay, u);
+  Float3 wi = d.wi;
+  Float ch = d.ch;
+  Float oh = d.oh;
   Mask ok = oh > 0.0f;
   PRECISE Float ch3 = ch * ch * ch;
   PRECISE Float pdf = exDiv(u.x, 4.0f * 3.14159274f * ax * ay * ch3 * oh);
@@ -198,14 +235,23 @@ Float ggxD(Float a2, Float ch) {
   return d;
 }
 
-BrdfSample sampleGgx(Float3 wo, Float a, Float2 u) {
+HalfDraw drawGgx(Float3 wo, Float a, Float2 u) {
   PRECISE Float a2 = a * a;
   PRECISE Float t2 = exDiv(a2 * u.x, 1.0f - u.x);
   PRECISE Float ch = exInverseSqrt(1.0f + t2);
   PRECISE Float sh = exSqrt(t2) * ch;
   Float3 h = sphericalDirection(sh, ch, u.y);
   PRECISE Float oh = dot(wo, h);
-  Float3 wi = reflectAbout(wo, h, oh);
+  return HalfDraw(reflectAbout(wo, h, oh), ch, oh, t2);
+}
+
+BrdfSample sampleGgx(Float3 wo, Float a, Float2 u) {
+  PRECISE Float a2 = a * a;
+  HalfDraw d = drawGgx(wo, a, u);
+  Float3 wi = d.wi;
+  Float ch = d.ch;
+  Float oh = d.oh;
+  Float t2 = d.t2;
   Mask ok = oh > 0.0f;
   PRECISE Float k = a2 + t2;
   PRECISE Float c2 = ch * ch;
@@ -271,17 +317,21 @@ Float lafortunePdfOf(LafortuneLobes L, BrdfParams p, Float3 wi) {
 
 Float lafortunePdf(BrdfParams p, Float3 wo, Float3 wi) { return lafortunePdfOf(lafortuneLobes(p, wo), p, wi); }
 
-BrdfSample sampleLafortune(BrdfParams p, Float3 wo, Float2 u) {
-  LafortuneLobes L = lafortuneLobes(p, wo);
+Float3 drawLafortune(LafortuneLobes L, BrdfParams p, Float2 u) {
   Mask second = u.x >= L.p0;
   // u rescaled into the chosen interval: [0, p0) -> [0, 1), [p0, 1) -> [0, 1)
   PRECISE Float ux = exDiv(select(second, u.x - L.p0, u.x), select(second, 1.0f - L.p0, L.p0));
   ux = min(ux, 0.99999994f);
-  LobeSample s = sampleCosineLobe(select(second, L.a1, L.a0), select(second, p.n1, p.n0), Float2(ux, u.y));
-  PRECISE Float pdf = lafortunePdfOf(L, p, s.w);
-  PRECISE Float w = exDiv(lafortuneEval(p, wo, s.w) * s.w.z, select(pdf > 0.0f, pdf, 1.0f));
+  return drawCosineLobe(select(second, L.a1, L.a0), select(second, p.n1, p.n0), Float2(ux, u.y)).w;
+}
+
+BrdfSample sampleLafortune(BrdfParams p, Float3 wo, Float2 u) {
+  LafortuneLobes L = lafortuneLobes(p, wo);
+  Float3 wi = drawLafortune(L, p, u);
+  PRECISE Float pdf = lafortunePdfOf(L, p, wi);
+  PRECISE Float w = exDiv(lafortuneEval(p, wo, wi) * wi.z, select(pdf > 0.0f, pdf, 1.0f));
   w = select(L.valid && pdf > 0.0f, w, 0.0f);
-  return BrdfSample(s.w, pdf, w);
+  return BrdfSample(wi, pdf, w);
 }
 
 // ---- dispatch on the per-lane kind (IF_ANY skips kinds no lane has; on the GPU a kind absent from
@@ -300,6 +350,22 @@ BrdfSample sampleBrdf(BrdfParams p, Float3 wo, Float2 u) {
   IF_ANY(m) { r = selectSample(m, sampleLafortune(p, wo, u), r); }
   m = brdfKindIs(p.kind, kBrdfGgx);
   IF_ANY(m) { r = selectSample(m, sampleGgx(wo, p.ax, u), r); }
+  return r;
+}
+
+// The direction sampleBrdf draws, without its pdf and weight (the same bits as sampleBrdf(p, wo, u).wi).
+Float3 sampleBrdfDirection(BrdfParams p, Float3 wo, Float2 u) {
+  Float3 r = Float3(0.0f, 0.0f, 1.0f);
+  Mask m = brdfKindIs(p.kind, kBrdfPhong);
+  IF_ANY(m) { r = select(m, drawCosineLobe(phongAxis(wo), p.e, u).w, r); }
+  m = brdfKindIs(p.kind, kBrdfBlinn);
+  IF_ANY(m) { r = select(m, sampleBlinnDirection(wo, p.e, u), r); }
+  m = brdfKindIs(p.kind, kBrdfWard);
+  IF_ANY(m) { r = select(m, drawWard(wo, p.ax, p.ay, u).wi, r); }
+  m = brdfKindIs(p.kind, kBrdfLafortune);
+  IF_ANY(m) { r = select(m, drawLafortune(lafortuneLobes(p, wo), p, u), r); }
+  m = brdfKindIs(p.kind, kBrdfGgx);
+  IF_ANY(m) { r = select(m, drawGgx(wo, p.ax, u).wi, r); }
   return r;
 }
 

@@ -67,8 +67,8 @@ Float3 sampleMisBrdf(BrdfParams brdf, Float pd, Float3 wo, Float4 u) {
   Mask diffuse = u.z < pd;
   Mask glossy = !diffuse;
   Float3 w = Float3(0.0f, 0.0f, 1.0f);
-  IF_ANY(diffuse) { w = select(diffuse, sampleCosineLobe(Float3(0.0f, 0.0f, 1.0f), 1.0f, uv).w, w); }
-  IF_ANY(glossy) { w = select(glossy, sampleBrdf(brdf, wo, uv).wi, w); }
+  IF_ANY(diffuse) { w = select(diffuse, drawCosineLobe(Float3(0.0f, 0.0f, 1.0f), 1.0f, uv).w, w); }
+  IF_ANY(glossy) { w = select(glossy, sampleBrdfDirection(brdf, wo, uv), w); }
   return w;
 }
 
