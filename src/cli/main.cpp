@@ -174,6 +174,9 @@ int main(int argc, char** argv) {
   modelCmd->add_option("--scenes", mo.scenes, "--validate: scene files (default: every scenes/*.json)");
   modelCmd->add_option("--devices-list", mo.devices, "--validate: software devices (default: lavapipe swiftshader)");
   modelCmd->add_option("--csv", mo.csv, "--validate: write one row per pass to this CSV");
+  modelCmd->add_option("--rounds", mo.rounds, "--validate: measure every pass this many times, each round after all the others "
+                                              "(the fastest over the rounds is compared; default 1)")
+      ->check(CLI::Range(1, 20));
   modelCmd->add_flag("--calibrate", mo.calibrate, "--validate: calibrate each device (devices/<D>.json) just before measuring it");
   modelCmd->add_option("--calibrate-rounds", mo.calibrateRounds, "--calibrate: calibrate's --rounds (default 3)")
       ->check(CLI::Range(1, 20));

@@ -18,6 +18,10 @@ struct ModelOptions : SceneOverrides {  // the shared scene options (--technique
   std::string device = "lavapipe";   // lavapipe, swiftshader, h100, h200
   std::string devicesDir = "devices";
   uint32_t repeat = 3;               // timed runs of each measured pass (the fastest is compared)
+  // --validate: measurement rounds. Each round measures every scene x technique again after all the others (the
+  // counting runs once); a pass's fastest over the rounds is compared, as calibrate keeps its kernels' fastest over
+  // its rounds: runs minutes apart see different states of a shared host, back-to-back runs the same one.
+  uint32_t rounds = 1;
   bool validate = false;             // every shipped scene x technique x software device
   std::vector<std::string> scenes;   // --validate: the scenes (default: every file in scenes/)
   std::vector<std::string> devices;  // --validate: the devices (default: lavapipe, swiftshader)
