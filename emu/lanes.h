@@ -131,6 +131,7 @@ template <int N> inline F32<N> uintBitsToFloat(U32<N> x) { return F32<N>((typena
 template <int N> inline F32<N> intBitsToFloat(I32<N> x) { return F32<N>((typename F32<N>::V)x.v); }
 /// The shading dialect's FOR hook (src/shade/prelude.h): nothing for the emulator's lanes.
 template <int N> inline int loopScope(F32<N>) { return 0; }
+template <int N> inline void loopIteration(F32<N>) {}
 /// The dialect's specMask and texelFetchUniform hooks: a plain mask, and nothing to count.
 template <int N> inline Mask<N> specConstantMask(F32<N>, bool b) { return Mask<N>(b); }
 template <int N> inline void countUniformFetches(F32<N>) {}

@@ -112,6 +112,9 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
   EXPECT_NE(errorOf(replaced("\"folds_specialization_constants\": true", "\"folds_specialization_constants\": \"yes\""))
                 .find("'folds_specialization_constants' must be true or false"),
             std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"value_numbering\": false", "\"value_numbering\": 0")).find("'value_numbering' must be true or false"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"value_numbering\": false,", "")).find("value_numbering"), std::string::npos);
   EXPECT_NE(errorOf(replaced("\"first_dispatch_seconds\": 0.0", "\"first_dispatch_seconds\": -1")).find("'first_dispatch_seconds' must be a number >= 0"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"compile_seconds_per_word\": 0.0", "\"compile_seconds_per_word\": -1e-9"))

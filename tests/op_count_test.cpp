@@ -271,4 +271,61 @@ TEST(OpCount, ExactDivisionAndSquareRootAreOneOperationWithTheEmulatorsBits) {
   opcount::countPortableExactMath = false;
   EXPECT_EQ(opcount::counts[opcount::kExDiv] + opcount::counts[opcount::kExSqrt], 0u);
 }
+
+// Value numbering (model/op_count.h): an operation whose operands carry the numbers of an earlier one's counts once
+// (commuted operands too), where the earlier one dominates it: before the loop, or in the same iteration; a loop
+// repeats an expression of unchanged operands in every iteration (gallivm runs no LICM); a new invocation starts over;
+// a lane-wise set() is a new value. Off, everything counts. The values are the lanes' own either way.
+TEST(OpCount, ValueNumberingCountsARepeatedExpressionOncePerIteration) {
+  using F8 = opcount::F<8>;
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> U(-4.0f, 4.0f);
+  for (int round = 0; round < 200; ++round) {
+    opcount::valueNumbering = round % 2 == 0;
+    const bool on = opcount::valueNumbering;
+    opcount::vnTable.reset();
+    F8 a(0.0f), b(0.0f), c(0.0f);
+    for (int i = 0; i < 8; ++i) a.set(i, U(rng)), b.set(i, U(rng)), c.set(i, U(rng));
+    opcount::counts = {};
+    const F8 p = a * b + c, q = a * b + c, r = b * a;
+    EXPECT_EQ(opcount::counts[opcount::kFMul], on ? 1u : 3u);
+    EXPECT_EQ(opcount::counts[opcount::kFAdd], on ? 1u : 2u);
+    const F8 d = a - b, e = b - a;  // not commutative: two operations
+    EXPECT_EQ(opcount::counts[opcount::kFAdd], on ? 3u : 4u);
+    for (int i = 0; i < 8; ++i) {
+      EXPECT_EQ(p[i], a[i] * b[i] + c[i]);
+      EXPECT_EQ(q[i], p[i]);
+      EXPECT_EQ(r[i], b[i] * a[i]);
+      EXPECT_EQ(d[i], a[i] - b[i]);
+      EXPECT_EQ(e[i], b[i] - a[i]);
+    }
+    {
+      opcount::counts = {};
+      auto loop = opcount::loopScope(F8(0.0f));
+      for (int it = 0; it < 5; ++it) {
+        opcount::loopIteration(F8(0.0f));
+        const F8 x = a * b;      // computed before the loop: dominates every iteration
+        const F8 y = a * c, z = c * a;  // first computed here: once per iteration
+        EXPECT_EQ(x[0], a[0] * b[0]);
+        EXPECT_EQ(y[3], z[3]);
+      }
+      EXPECT_EQ(opcount::counts[opcount::kFMul], on ? 5u : 15u);
+    }
+    opcount::counts = {};
+    (void)(a * c);  // after the loop: the loop's product does not reach here
+    EXPECT_EQ(opcount::counts[opcount::kFMul], 1u);
+    F8 a2 = a;
+    a2.set(0, a[0]);  // the same lanes, but a new value (a load)
+    (void)(a2 * b);
+    EXPECT_EQ(opcount::counts[opcount::kFMul], 2u);
+    opcount::startInvocation();
+    (void)(a * b);  // the next invocation computes it again
+    EXPECT_EQ(opcount::counts[opcount::kFMul], 3u);
+    const F8 k1 = a * 2.0f, k2 = a * F8(2.0f), k3 = a * 3.0f;  // constants are numbered by their bits
+    EXPECT_EQ(opcount::counts[opcount::kFMul], on ? 5u : 6u);
+    EXPECT_EQ(k1[1], k2[1]);
+    EXPECT_EQ(k3[1], a[1] * 3.0f);
+  }
+  opcount::valueNumbering = false;
+}
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -207,6 +208,39 @@ TEST(PassCounts, AbsentBrdfKindsCountOnlyWhereTheCompilerKeepsThem) {
   const double folded = shadeOps(true, true), kept = shadeOps(true, false);
   EXPECT_GT(kept, 1.2 * folded);  // four absent kinds' sampling code per sample
   EXPECT_EQ(shadeOps(false, true), shadeOps(false, false));
+}
+
+// Value numbering (a device whose compiler computes an expression once across the blocks it flattened: lavapipe):
+// the materials scene under the MIS technique evaluates brdfPdf and brdfEval of one direction in sibling blocks of
+// every kind, so fewer operations count; the counted pass still gives the emulator's bits, and the other passes,
+// whose drivers do not mark invocations, count as before.
+TEST(PassCounts, ValueNumberingCountsARepeatedExpressionOnceAndChangesNoBit) {
+  for (const char* technique : {"kdtree-mis", "fis"}) {
+    const Scene scene = small({"materials.json", technique});
+    std::ostringstream quiet;
+    const EnvironmentMap env = loadEnvironment(scene.environment, quiet);
+    auto ops = [&](bool numbering) {
+      model::CoreModel core;
+      core.executeEveryBlock = true, core.valueNumbering = numbering;
+      const model::FrameCounts f = model::countFrame(scene, *env.texture, emu::lavapipeProfile(), core);
+      EXPECT_EQ(f.identical, f.compared) << technique;
+      EXPECT_GT(f.compared, 0u);
+      std::map<std::string, double> byPass;
+      for (const model::PassCounts& p : f.passes)
+        for (int k = 0; k < opcount::kTexLookup; ++k) byPass[p.pass] += p.ops[size_t(k)];
+      return byPass;
+    };
+    const auto all = ops(false), numbered = ops(true);
+    ASSERT_EQ(all.size(), numbered.size());
+    for (const auto& [pass, n] : all) {
+      if (pass == "shade") {
+        EXPECT_LT(numbered.at(pass), 0.97 * n) << technique;  // repeated expressions count once
+        EXPECT_GT(numbered.at(pass), 0.3 * n) << technique;   // and only those
+      } else {
+        EXPECT_EQ(numbered.at(pass), n) << pass;
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -42,7 +42,8 @@ enum Kind : uint32_t {
   kFAddK, kFMulK, kIAluK, kIMulK, kCvtK, kSelectK, kTexK, kCopyK, kEmptyK, kWindowK, kBranchK, kBranchLoopK,
   kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK, kShiftK, kICmpK, kISelectK,
   kPrivReadK, kPrivWriteK,
-  kExDivK, kExSqrtK  // calibrate_exmath.comp's kinds 0 and 1 (the shared exDiv and exSqrt)
+  kExDivK, kExSqrtK,  // calibrate_exmath.comp's kinds 0 and 1 (the shared exDiv and exSqrt)
+  kSharedBlocksK, kDistinctBlocksK  // calibrate.comp's kinds 23 and 24
 };
 // Chain steps per iteration of the arithmetic kernels (calibrate.comp STEPS_INDEP, STEPS_DEP).
 constexpr double kSteps = 128.0;
@@ -82,10 +83,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
   // The exact-math kinds are calibrate_exmath.comp's (specialization constants 1 and 2; 0 is the prelude's).
-  std::unique_ptr<vk::Kernel> kernels[2][kExSqrtK + 1];
+  std::unique_ptr<vk::Kernel> kernels[2][kDistinctBlocksK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
-      const bool ex = kind >= kExDivK;
+      const bool ex = kind == kExDivK || kind == kExSqrtK;
       const uint32_t spec[] = {ex ? ~0u : kind, ex ? kind - kExDivK : dependent, dependent};
       const std::span<const uint32_t> module = ex ? std::span<const uint32_t>(kSpv_calibrate_exmath_comp)
                                                   : std::span<const uint32_t>(kSpv_calibrate_comp);
@@ -448,6 +449,19 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       p.kind = kSpecBranchK, p.pad = 1;
       const double spec = best.low(timeRun(p, nearest->handle(), count)) - base;
       d.foldsSpecConstants = spec < 0.5 * work;
+      // Two blocks under complementary masks computing the same 32 steps from the same operands (the second block
+      // repeats the first's expressions) against two computing different ones: a compiler that numbers values across
+      // the blocks it has made one straight line (and so also hoists what a loop does not change) computes the shared
+      // steps once, about 1/2 + the blocks' merges of the distinct pair's time; one that does not, the same time.
+      p.kind = kSharedBlocksK;
+      const double shared = best.low(timeRun(p, nearest->handle(), count)) - base;
+      p.kind = kDistinctBlocksK;
+      const double distinct = best.low(timeRun(p, nearest->handle(), count)) - base;
+      d.valueNumbering = shared < 0.8 * distinct;
+      out << "  values    two blocks repeating one computation cost " << std::setprecision(3)
+          << 100.0 * shared / std::max(distinct, 1e-12) << "% of two computing different ones: "
+          << (d.valueNumbering ? "repeated expressions are computed once (value numbering across blocks)"
+                               : "each block computes its own") << "\n";
       out << "  branch    an untaken block costs " << std::setprecision(3) << 100.0 * straight / std::max(work, 1e-12)
           << "% of its work, an untaken loop " << 100.0 * loop / std::max(work, 1e-12) << "%, an untaken 16-iteration loop "
           << 100.0 * unrolled / std::max(work, 1e-12) << "%: "

@@ -56,6 +56,7 @@ inline bool anyLane(bool m) { return m; }
 // The dialect's IF_ANY and FOR hooks (shade/prelude.h): nothing for the scalar and emulator builds.
 inline bool ifAnyScope(bool m) { return m; }
 inline int loopScope(float) { return 0; }
+inline void loopIteration(float) {}
 inline bool specConstantMask(float, bool b) { return b; }
 inline void countUniformFetches(float) {}
 // The dialect's arrayGet / arraySet hooks: the value itself.

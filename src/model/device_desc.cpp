@@ -53,7 +53,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
                 "dispatch_seconds", "first_dispatch_seconds", "compile_seconds_per_word", "workgroup_seconds", "raster", "texture_miss_seconds",
                 "texture_stream_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
-                "folds_specialization_constants", "vertex_cache"},
+                "folds_specialization_constants", "value_numbering", "vertex_cache"},
             path, "");
   DeviceDesc d;
   for (const char* k : {"device", "name", "provenance"})
@@ -66,6 +66,8 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   if (!j.at("folds_specialization_constants").is_boolean())
     fail(path, "'folds_specialization_constants' must be true or false");
   d.foldsSpecConstants = j.at("folds_specialization_constants").get<bool>();
+  if (!j.at("value_numbering").is_boolean()) fail(path, "'value_numbering' must be true or false");
+  d.valueNumbering = j.at("value_numbering").get<bool>();
   d.device = j.at("device").get<std::string>();
   d.name = j.at("name").get<std::string>();
   d.provenance = j.at("provenance").get<std::string>();
@@ -171,6 +173,7 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"window_ops", d.windowOps},
             {"executes_every_block", d.executesEveryBlock},
             {"folds_specialization_constants", d.foldsSpecConstants},
+            {"value_numbering", d.valueNumbering},
             {"vertex_cache", {{"entries", d.vertexCache.entries}, {"batch_triangles", d.vertexCache.batchTriangles},
                               {"run_lanes", d.vertexCache.runLanes}}}};
   return j.dump(2) + "\n";

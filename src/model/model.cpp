@@ -37,6 +37,7 @@ CoreModel coreModel(const DeviceDesc& d) {
   m.on = !d.unitsOverlap;
   m.executeEveryBlock = d.executesEveryBlock;
   m.foldsSpecConstants = d.foldsSpecConstants;
+  m.valueNumbering = d.valueNumbering;
   for (int k = 0; k < opcount::kTexLookup; ++k) {
     const OpClass c = classOf(opcount::Kind(k));
     m.interval[size_t(k)] = 8.0 * double(d.cores) / d.opsPerSecond[size_t(c)];  // one 8-lane operation on one core

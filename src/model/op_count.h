@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "emu/lanes.h"
@@ -160,6 +161,97 @@ inline double op(Kind k, double ready) {
   tick(k);
   return sched.on ? sched.issue(k, ready) : 0.0;
 }
+
+// Value numbering: the device compiler's redundancy elimination (DeviceDesc value_numbering, calibrate's shared-block
+// kernels measure it). lavapipe's gallivm turns every structured `if` into straight-line code under a mask, and the
+// EarlyCSE and GVN passes it runs then compute an expression once however many of those blocks write it (the MIS
+// techniques' brdfPdf and brdfEval of one direction share the half vector). gallivm runs no LICM (its pass list leaves
+// it out: compile time), so an expression a loop repeats with unchanged operands is computed in every iteration.
+// With it on, every counted value carries a number: values read from memory, a texture or a lane-wise set() get
+// fresh ones, constants one per bit pattern, an operation one per (operation, operand numbers); an operation whose
+// number an operation counted earlier in the same iteration of every loop around it (or before those loops) already
+// has is not counted again and is ready when that one was. Off (0 numbers) it changes nothing. It never changes a
+// computed bit.
+inline thread_local bool valueNumbering = false;
+inline thread_local uint64_t vnNext = 1;
+constexpr uint64_t kVnNone = ~0ull;      // no operand
+constexpr uint64_t kVnConst = 1ull << 63;  // constants: the tag and the bits
+constexpr uint32_t kVnCommutative = 1u << 31;
+inline uint64_t freshVn() { return valueNumbering ? vnNext++ : 0; }
+inline uint64_t constVn(uint32_t tag, uint32_t bits) { return kVnConst | (uint64_t(tag) << 32) | bits; }
+// The numbered operations of the current invocation (open addressing; emptied when the driver starts the next
+// invocation, or when half full).
+// The iteration of the loop at each depth (loopIteration numbers them; depth 0: outside every loop).
+inline thread_local std::array<uint64_t, 64> loopEpoch{};
+inline thread_local uint64_t epochNext = 1;
+struct VnTable {
+  struct Slot {
+    uint64_t a, b, c, v, epoch;
+    double t;
+    uint32_t code, gen, depth;
+  };
+  static constexpr size_t kSlots = size_t(1) << 20;
+  std::vector<Slot> slots;
+  uint32_t gen = 1;
+  size_t used = 0;
+  void reset() {
+    if (slots.empty()) slots.assign(kSlots, Slot{0, 0, 0, 0, 0, 0.0, 0, 0, 0});
+    ++gen, used = 0;
+  }
+  Slot& find(uint32_t code, uint64_t a, uint64_t b, uint64_t c) {
+    uint64_t h = (a * 0x9E3779B97F4A7C15ull) ^ (b * 0xC2B2AE3D27D4EB4Full) ^ (c * 0x165667B19E3779F9ull) ^ code;
+    h ^= h >> 29;
+    for (size_t i = size_t(h) & (kSlots - 1);; i = (i + 1) & (kSlots - 1)) {
+      Slot& e = slots[i];
+      if (e.gen != gen || (e.code == code && e.a == a && e.b == b && e.c == c)) return e;
+    }
+  }
+};
+inline thread_local VnTable vnTable;
+struct Res {
+  double t;
+  uint64_t v;
+};
+/// op() with value numbering: the result's ready time and number.
+inline Res vop(Kind k, uint32_t code, double ready, uint64_t a, uint64_t b = kVnNone, uint64_t c = kVnNone) {
+  if (!counting()) return {ready, freshVn()};
+  if (!valueNumbering || a == 0 || b == 0 || c == 0) return {op(k, ready), freshVn()};
+  if ((code & kVnCommutative) && a > b) std::swap(a, b);
+  VnTable::Slot& e = vnTable.find(code, a, b, c);
+  const uint32_t depth = uint32_t(std::min(std::max(loopDepth, 0), 63));
+  if (e.gen == vnTable.gen && e.depth <= depth && loopEpoch[e.depth] == e.epoch)
+    return {e.t, e.v};  // computed before, where it dominates this one: the device computes it once
+  const Res r{op(k, ready), vnNext++};
+  if (e.gen != vnTable.gen) ++vnTable.used;
+  e = VnTable::Slot{a, b, c, r.v, loopEpoch[depth], r.t, code, vnTable.gen, depth};
+  if (vnTable.used > VnTable::kSlots / 2) vnTable.reset();
+  return r;
+}
+/// The counted driver starts an invocation (one vector of lanes): numbers do not carry over from the last one.
+inline void startInvocation() {
+  if (valueNumbering) vnTable.reset();
+}
+template <class A> inline Res vop1(Kind k, uint32_t code, const A& a) { return vop(k, code, a.t, a.v); }
+template <class A, class B> inline Res vop2(Kind k, uint32_t code, const A& a, const B& b) {
+  return vop(k, code, a.t > b.t ? a.t : b.t, a.v, b.v);
+}
+template <class A, class B, class C> inline Res vop3(Kind k, uint32_t code, const A& a, const B& b, const C& c) {
+  return vop(k, code, std::max({a.t, b.t, c.t}), a.v, b.v, c.v);
+}
+// Operation codes: (operation << 3) | type tag (1 float, 2 uint, 3 int, 4 mask).
+enum VnOp : uint32_t {
+  kVnAdd = 1, kVnSub, kVnMul, kVnNeg, kVnLt, kVnLe, kVnGt, kVnGe, kVnEq, kVnNe, kVnSel, kVnAnd, kVnOr, kVnXor, kVnNot,
+  kVnShl, kVnShr, kVnShlI, kVnShrI, kVnMulHi, kVnCvtI, kVnCvtU, kVnCvtF, kVnExDiv, kVnExSqrt
+};
+constexpr uint32_t vnCode(VnOp o, uint32_t tag, bool commutative = false) {
+  return (uint32_t(o) << 3) | tag | (commutative ? kVnCommutative : 0u);
+}
+template <class T> inline uint32_t vnBits(T x) {
+  uint32_t b;
+  static_assert(sizeof(T) == 4);
+  std::memcpy(&b, &x, 4);
+  return b;
+}
 inline double op(Kind k, double a, double b) { return op(k, a > b ? a : b); }
 inline double op(Kind k, double a, double b, double c) { return op(k, a > b ? (a > c ? a : c) : (b > c ? b : c)); }
 
@@ -189,13 +281,15 @@ struct M {
   emu::Mask<N> m;
   double t = 0;
   bool never = false;  // false from a uniform constant (a specialization constant: the GPU compiles the block out)
+  uint64_t v = 0;      // value number (valueNumbering)
   M() = default;
-  M(bool b) : m(b), never(!b) {}
-  explicit M(emu::Mask<N> x, double ready = 0, bool nev = false) : m(x), t(ready), never(nev) {}
+  M(bool b) : m(b), never(!b), v(constVn(4, b)) {}
+  explicit M(emu::Mask<N> x, double ready = 0, bool nev = false) : m(x), t(ready), never(nev), v(freshVn()) {}
+  M(emu::Mask<N> x, Res r, bool nev = false) : m(x), t(r.t), never(nev), v(r.v) {}
   explicit operator bool() const = delete;
-  friend M operator&&(M a, M b) { return M(a.m && b.m, op(kMaskOp, a.t, b.t), a.never || b.never); }
-  friend M operator||(M a, M b) { return M(a.m || b.m, op(kMaskOp, a.t, b.t), a.never && b.never); }
-  friend M operator!(M a) { return M(!a.m, op(kMaskOp, a.t)); }
+  friend M operator&&(M a, M b) { return M(a.m && b.m, vop2(kMaskOp, vnCode(kVnAnd, 4, true), a, b), a.never || b.never); }
+  friend M operator||(M a, M b) { return M(a.m || b.m, vop2(kMaskOp, vnCode(kVnOr, 4, true), a, b), a.never && b.never); }
+  friend M operator!(M a) { return M(!a.m, vop1(kMaskOp, vnCode(kVnNot, 4), a)); }
   friend IfAnyScope ifAnyScope(M a) {
     const bool any = anyLane(a.m);
     if (any || !executeEveryBlock || a.never) return {any, false};
@@ -203,47 +297,53 @@ struct M {
     if (outer) deadBase = loopDepth;
     return {true, outer};
   }
-  friend M operator==(M a, M b) { return M(a.m == b.m, op(kMaskOp, a.t, b.t)); }
-  friend M operator!=(M a, M b) { return M(a.m != b.m, op(kMaskOp, a.t, b.t)); }
+  friend M operator==(M a, M b) { return M(a.m == b.m, vop2(kMaskOp, vnCode(kVnEq, 4, true), a, b)); }
+  friend M operator!=(M a, M b) { return M(a.m != b.m, vop2(kMaskOp, vnCode(kVnNe, 4, true), a, b)); }
   friend bool anyLane(M a) { return anyLane(a.m); }
   friend F<N> select(M c, float a, float b) { return select(c, F<N>(a), F<N>(b)); }
   friend U<N> select(M c, uint32_t a, uint32_t b) { return select(c, U<N>(a), U<N>(b)); }
   friend I<N> select(M c, int32_t a, int32_t b) { return select(c, I<N>(a), I<N>(b)); }
-  friend M select(M c, M a, M b) { return M(select(c.m, a.m, b.m), op(kISel, c.t, a.t, b.t)); }
+  friend M select(M c, M a, M b) { return M(select(c.m, a.m, b.m), vop3(kISel, vnCode(kVnSel, 4), c, a, b)); }
 };
 
-#define OPCOUNT_COMMON(Self, Lane, Elem, AddKind, MulKind, CmpKind, SelKind)                                       \
+#define OPCOUNT_COMMON(Self, Lane, Elem, Tag, AddKind, MulKind, CmpKind, SelKind)                                  \
   Lane x;                                                                                                  \
   double t = 0;                                                                                            \
+  uint64_t v = 0; /* value number (valueNumbering) */                                                      \
   Self() = default;                                                                                        \
-  Self(Elem s) : x(s) {}                                                                                   \
-  explicit Self(Lane l, double ready = 0) : x(l), t(ready) {}                                              \
+  Self(Elem s) : x(s), v(constVn(Tag, vnBits(s))) {}                                                       \
+  explicit Self(Lane l, double ready = 0) : x(l), t(ready), v(freshVn()) {}                                \
+  Self(Lane l, Res r) : x(l), t(r.t), v(r.v) {}                                                            \
   Elem operator[](int i) const { return x[i]; }                                                            \
-  void set(int i, Elem e) { x.set(i, e); }                                                                 \
-  friend Self operator+(Self a, Self b) { return Self(a.x + b.x, op(AddKind, a.t, b.t)); }                 \
-  friend Self operator-(Self a, Self b) { return Self(a.x - b.x, op(AddKind, a.t, b.t)); }                 \
-  friend Self operator*(Self a, Self b) { return Self(a.x * b.x, op(MulKind, a.t, b.t)); }                 \
-  friend Self operator-(Self a) { return Self(-a.x, op(AddKind, a.t)); }                                   \
+  void set(int i, Elem e) { x.set(i, e), v = freshVn(); }                                                  \
+  friend Self operator+(Self a, Self b) { return Self(a.x + b.x, vop2(AddKind, vnCode(kVnAdd, Tag, true), a, b)); } \
+  friend Self operator-(Self a, Self b) { return Self(a.x - b.x, vop2(AddKind, vnCode(kVnSub, Tag), a, b)); } \
+  friend Self operator*(Self a, Self b) { return Self(a.x * b.x, vop2(MulKind, vnCode(kVnMul, Tag, true), a, b)); } \
+  friend Self operator-(Self a) { return Self(-a.x, vop1(AddKind, vnCode(kVnNeg, Tag), a)); }              \
   Self& operator+=(Self b) { return *this = *this + b; }                                                   \
   Self& operator-=(Self b) { return *this = *this - b; }                                                   \
   Self& operator*=(Self b) { return *this = *this * b; }                                                   \
-  friend M<N> operator<(Self a, Self b) { return M<N>(a.x < b.x, op(CmpKind, a.t, b.t)); }                 \
-  friend M<N> operator<=(Self a, Self b) { return M<N>(a.x <= b.x, op(CmpKind, a.t, b.t)); }               \
-  friend M<N> operator>(Self a, Self b) { return M<N>(a.x > b.x, op(CmpKind, a.t, b.t)); }                 \
-  friend M<N> operator>=(Self a, Self b) { return M<N>(a.x >= b.x, op(CmpKind, a.t, b.t)); }               \
-  friend M<N> operator==(Self a, Self b) { return M<N>(a.x == b.x, op(CmpKind, a.t, b.t)); }               \
-  friend M<N> operator!=(Self a, Self b) { return M<N>(a.x != b.x, op(CmpKind, a.t, b.t)); }               \
-  friend Self select(M<N> m, Self a, Self b) { return Self(select(m.m, a.x, b.x), op(SelKind, m.t, a.t, b.t)); }
+  friend M<N> operator<(Self a, Self b) { return M<N>(a.x < b.x, vop2(CmpKind, vnCode(kVnLt, Tag), a, b)); } \
+  friend M<N> operator<=(Self a, Self b) { return M<N>(a.x <= b.x, vop2(CmpKind, vnCode(kVnLe, Tag), a, b)); } \
+  friend M<N> operator>(Self a, Self b) { return M<N>(a.x > b.x, vop2(CmpKind, vnCode(kVnGt, Tag), a, b)); } \
+  friend M<N> operator>=(Self a, Self b) { return M<N>(a.x >= b.x, vop2(CmpKind, vnCode(kVnGe, Tag), a, b)); } \
+  friend M<N> operator==(Self a, Self b) { return M<N>(a.x == b.x, vop2(CmpKind, vnCode(kVnEq, Tag, true), a, b)); } \
+  friend M<N> operator!=(Self a, Self b) { return M<N>(a.x != b.x, vop2(CmpKind, vnCode(kVnNe, Tag, true), a, b)); } \
+  friend Self select(M<N> m, Self a, Self b) { return Self(select(m.m, a.x, b.x), vop3(SelKind, vnCode(kVnSel, Tag), m, a, b)); }
 
-#define OPCOUNT_INT(Self)                                                                                   \
-  friend Self operator&(Self a, Self b) { return Self(a.x & b.x, op(kIAlu, a.t, b.t)); }                   \
-  friend Self operator|(Self a, Self b) { return Self(a.x | b.x, op(kIAlu, a.t, b.t)); }                   \
-  friend Self operator^(Self a, Self b) { return Self(a.x ^ b.x, op(kIAlu, a.t, b.t)); }                   \
-  friend Self operator~(Self a) { return Self(~a.x, op(kIAlu, a.t)); }                                     \
-  friend Self operator<<(Self a, Self b) { return Self(a.x << b.x, op(kShift, a.t, b.t)); }                 \
-  friend Self operator>>(Self a, Self b) { return Self(a.x >> b.x, op(kShift, a.t, b.t)); }                 \
-  friend Self operator<<(Self a, int s) { return Self(a.x << s, op(kShift, a.t)); }                         \
-  friend Self operator>>(Self a, int s) { return Self(a.x >> s, op(kShift, a.t)); }                         \
+#define OPCOUNT_INT(Self, Tag)                                                                              \
+  friend Self operator&(Self a, Self b) { return Self(a.x & b.x, vop2(kIAlu, vnCode(kVnAnd, Tag, true), a, b)); } \
+  friend Self operator|(Self a, Self b) { return Self(a.x | b.x, vop2(kIAlu, vnCode(kVnOr, Tag, true), a, b)); } \
+  friend Self operator^(Self a, Self b) { return Self(a.x ^ b.x, vop2(kIAlu, vnCode(kVnXor, Tag, true), a, b)); } \
+  friend Self operator~(Self a) { return Self(~a.x, vop1(kIAlu, vnCode(kVnNot, Tag), a)); }                \
+  friend Self operator<<(Self a, Self b) { return Self(a.x << b.x, vop2(kShift, vnCode(kVnShl, Tag), a, b)); } \
+  friend Self operator>>(Self a, Self b) { return Self(a.x >> b.x, vop2(kShift, vnCode(kVnShr, Tag), a, b)); } \
+  friend Self operator<<(Self a, int s) {                                                                  \
+    return Self(a.x << s, vop(kShift, vnCode(kVnShlI, Tag), a.t, a.v, constVn(3, uint32_t(s))));          \
+  }                                                                                                        \
+  friend Self operator>>(Self a, int s) {                                                                  \
+    return Self(a.x >> s, vop(kShift, vnCode(kVnShrI, Tag), a.t, a.v, constVn(3, uint32_t(s))));          \
+  }                                                                                                        \
   Self& operator&=(Self b) { return *this = *this & b; }                                                   \
   Self& operator|=(Self b) { return *this = *this | b; }                                                   \
   Self& operator^=(Self b) { return *this = *this ^ b; }                                                   \
@@ -252,29 +352,33 @@ struct M {
 
 template <int N>
 struct U {
-  OPCOUNT_COMMON(U, emu::U32<N>, uint32_t, kIAlu, kIMul, kICmp, kISel)
-  OPCOUNT_INT(U)
+  OPCOUNT_COMMON(U, emu::U32<N>, uint32_t, 2, kIAlu, kIMul, kICmp, kISel)
+  OPCOUNT_INT(U, 2)
   explicit U(I<N> a);
   explicit U(F<N> a);
-  friend U mulHi(U a, U b) { return U(emu::mulHi(a.x, b.x), op(kIMul, a.t, b.t)); }
+  friend U mulHi(U a, U b) { return U(emu::mulHi(a.x, b.x), vop2(kIMul, vnCode(kVnMulHi, 2, true), a, b)); }
 };
 
 template <int N>
 struct I {
-  OPCOUNT_COMMON(I, emu::I32<N>, int32_t, kIAlu, kIMul, kICmp, kISel)
-  OPCOUNT_INT(I)
-  explicit I(U<N> a) : x(emu::I32<N>(a.x)), t(a.t) {}
+  OPCOUNT_COMMON(I, emu::I32<N>, int32_t, 3, kIAlu, kIMul, kICmp, kISel)
+  OPCOUNT_INT(I, 3)
+  explicit I(U<N> a) : x(emu::I32<N>(a.x)), t(a.t), v(a.v) {}  // a bit cast: the same number (ops carry the type)
   explicit I(F<N> a);
 };
 
 template <int N>
 struct F {
-  OPCOUNT_COMMON(F, emu::F32<N>, float, kFAdd, kFMul, kFCmp, kSel)
-  explicit F(I<N> a) : x(emu::F32<N>(a.x)), t(op(kCvt, a.t)) {}
-  explicit F(U<N> a) : x(emu::F32<N>(a.x)), t(op(kCvt, a.t)) {}
+  OPCOUNT_COMMON(F, emu::F32<N>, float, 1, kFAdd, kFMul, kFCmp, kSel)
+  explicit F(I<N> a) : F(emu::F32<N>(a.x), vop1(kCvt, vnCode(kVnCvtF, 3), a)) {}
+  explicit F(U<N> a) : F(emu::F32<N>(a.x), vop1(kCvt, vnCode(kVnCvtF, 2), a)) {}
 };
 
 template <int N> inline LoopScope loopScope(F<N>) { return {}; }
+// Each iteration of the dialect's FOR: what it computes is its own (value numbering: no LICM).
+template <int N> inline void loopIteration(F<N>) {
+  if (loopDepth >= 0 && loopDepth < 64) loopEpoch[size_t(loopDepth)] = epochNext++;
+}
 // The dialect's specMask (shade/prelude.h): a uniform mask from a specialization constant.
 template <int N> inline M<N> specConstantMask(F<N>, bool b) {
   return M<N>(emu::Mask<N>(b), 0, !b && foldsSpecConstants);
@@ -289,18 +393,18 @@ template <int N> inline F<N> indexedWrite(F<N> v) { return F<N>(v.x, op(kPrivWri
 template <int N> inline I<N> indexedWrite(I<N> v) { return I<N>(v.x, op(kPrivWrite, v.t)); }
 template <int N> inline U<N> indexedWrite(U<N> v) { return U<N>(v.x, op(kPrivWrite, v.t)); }
 
-template <int N> U<N>::U(I<N> a) : x(emu::U32<N>(a.x)), t(a.t) {}
-template <int N> U<N>::U(F<N> a) : x(emu::U32<N>(a.x)), t(op(kCvt, a.t)) {}
-template <int N> I<N>::I(F<N> a) : x(emu::I32<N>(a.x)), t(op(kCvt, a.t)) {}
+template <int N> U<N>::U(I<N> a) : x(emu::U32<N>(a.x)), t(a.t), v(a.v) {}
+template <int N> U<N>::U(F<N> a) : U(emu::U32<N>(a.x), vop1(kCvt, vnCode(kVnCvtU, 1), a)) {}
+template <int N> I<N>::I(F<N> a) : I(emu::I32<N>(a.x), vop1(kCvt, vnCode(kVnCvtI, 1), a)) {}
 
 #undef OPCOUNT_COMMON
 #undef OPCOUNT_INT
 
 // Bit casts are free (no instruction on either build).
-template <int N> inline U<N> floatBitsToUint(F<N> a) { return U<N>(emu::floatBitsToUint(a.x), a.t); }
-template <int N> inline I<N> floatBitsToInt(F<N> a) { return I<N>(emu::floatBitsToInt(a.x), a.t); }
-template <int N> inline F<N> uintBitsToFloat(U<N> a) { return F<N>(emu::uintBitsToFloat(a.x), a.t); }
-template <int N> inline F<N> intBitsToFloat(I<N> a) { return F<N>(emu::intBitsToFloat(a.x), a.t); }
+template <int N> inline U<N> floatBitsToUint(F<N> a) { return U<N>(emu::floatBitsToUint(a.x), Res{a.t, a.v}); }
+template <int N> inline I<N> floatBitsToInt(F<N> a) { return I<N>(emu::floatBitsToInt(a.x), Res{a.t, a.v}); }
+template <int N> inline F<N> uintBitsToFloat(U<N> a) { return F<N>(emu::uintBitsToFloat(a.x), Res{a.t, a.v}); }
+template <int N> inline F<N> intBitsToFloat(I<N> a) { return F<N>(emu::intBitsToFloat(a.x), Res{a.t, a.v}); }
 
 /// N texel fetches (one texel each, no filtering), unless inside a loop of an untaken block.
 inline void countFetches(int n) {
@@ -414,6 +518,7 @@ void uintFetchLanes(const USampler2DArray& s, opcount::I<N> x, opcount::I<N> y, 
   uintFetchLanes(s, x.x, y.x, layer.x, level, ra, rb, rc, rd);
   a.x = ra, b.x = rb, c.x = rc, d.x = rd;
   a.t = b.t = c.t = d.t = std::max({x.t, y.t, layer.t});
+  a.v = opcount::freshVn(), b.v = opcount::freshVn(), c.v = opcount::freshVn(), d.v = opcount::freshVn();  // loaded
 }
 }  // namespace shadetwin::shade
 
@@ -433,7 +538,8 @@ inline NativeResult<opcount::F<N>> nativeDiv(opcount::F<N> a, opcount::F<N> b) {
   exactDivLanes(xa, xb, q, N);
   opcount::F<N> r(0.0f);
   for (int i = 0; i < N; ++i) r.x.set(i, q[i]);
-  r.t = opcount::op(opcount::kExDiv, a.t, b.t);
+  const opcount::Res o = opcount::vop2(opcount::kExDiv, opcount::vnCode(opcount::kVnExDiv, 1), a, b);
+  r.t = o.t, r.v = o.v;
   return {true, r};
 }
 template <int N>
@@ -444,7 +550,8 @@ inline NativeResult<opcount::F<N>> nativeSqrt(opcount::F<N> x) {
   exactSqrtLanes(xs, q, N);
   opcount::F<N> r(0.0f);
   for (int i = 0; i < N; ++i) r.x.set(i, q[i]);
-  r.t = opcount::op(opcount::kExSqrt, x.t);
+  const opcount::Res o = opcount::vop1(opcount::kExSqrt, opcount::vnCode(opcount::kVnExSqrt, 1), x);
+  r.t = o.t, r.v = o.v;
   return {true, r};
 }
 }  // namespace shadetwin::shade

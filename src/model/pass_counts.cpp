@@ -101,6 +101,8 @@ std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& 
     opcount::counts = {};
     opcount::executeEveryBlock = core.executeEveryBlock;
     opcount::foldsSpecConstants = core.foldsSpecConstants;
+    opcount::valueNumbering = core.valueNumbering && core.invocationsMarked;
+    if (opcount::valueNumbering) opcount::vnTable.reset();
     opcount::texCache.configure(core.cacheLineBytes, core.cacheBytes);  // cold at the start of every counted pass
     opcount::Scheduler& s = opcount::sched;
     s.on = core.on;
@@ -112,6 +114,7 @@ std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& 
     s.on = false;
     opcount::executeEveryBlock = false;
     opcount::foldsSpecConstants = true;
+    opcount::valueNumbering = false;
     if (scheduledSeconds) *scheduledSeconds = core.on ? s.lastRetire : 0.0;
     for (int k = 0; k < opcount::kKinds; ++k) t[size_t(k)] = opcount::counts[size_t(k)];
   });

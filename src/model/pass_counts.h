@@ -60,6 +60,8 @@ struct PassCounts {
 struct CoreModel {
   bool executeEveryBlock = false;  // opcount::executeEveryBlock (software devices), also without the schedule
   bool foldsSpecConstants = true;  // opcount::foldsSpecConstants
+  bool valueNumbering = false;     // opcount::valueNumbering, where the run marks its invocations:
+  bool invocationsMarked = false;  // the counted driver calls opcount::startInvocation before each
   bool on = false;
   std::array<double, opcount::kKinds> latency{}, interval{};
   std::array<uint32_t, opcount::kKinds> slots = opcount::Scheduler::ones();  // window entries per operation

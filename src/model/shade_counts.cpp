@@ -24,7 +24,11 @@ namespace counted_pass {
 #define SHADE_EMU_I opcount::I<8>
 #define SHADE_EMU_M opcount::M<8>
 #define SHADE_EMU_ENTRY shadeCounted
+// Each vector of 8 pixels is one invocation of the entry point: the compiler's redundancy elimination does not reach
+// across invocations (opcount::valueNumbering numbers within one).
+#define SHADE_EMU_INVOCATION() opcount::startInvocation()
 #include "passes/shade_emu_body.inl"
+#undef SHADE_EMU_INVOCATION
 }  // namespace counted_pass
 
 namespace model {
@@ -35,7 +39,13 @@ PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInput
   PassCounts c;
   c.pass = "shade";
   opcount::sceneBrdfKinds = brdfKindsOf(materialRecords(scene, true));  // the pipeline's specialization constant
-  addTicks(c, countedTicks([&] { counted_pass::shadeCounted(scene, g, in, dev, image, vis); }, core, &c.scheduledSeconds), 8);
+  // Value numbering (a device whose compiler computes a repeated expression once: DeviceDesc value_numbering) is
+  // applied where the counted driver marks its invocations: the shading pass, whose shared source repeats the most (a
+  // BRDF kind's blocks in pdf and eval of one direction, the MIS strategies, a material's view-only terms in the sample
+  // loop). The other passes' counted drivers do not mark them, so they count every operation as written.
+  CoreModel shadeCore = core;
+  shadeCore.invocationsMarked = true;
+  addTicks(c, countedTicks([&] { counted_pass::shadeCounted(scene, g, in, dev, image, vis); }, shadeCore, &c.scheduledSeconds), 8);
   opcount::sceneBrdfKinds = 0xffffffffu;
   const uint64_t pixels = uint64_t(g.width) * g.height;
   c.invocations = (pixels + 7) / 8 * 8;

@@ -1,7 +1,8 @@
 // The emulated shading pass's drivers (every technique), written once and compiled once per build of the shared
 // dialect: passes/shade_emu.cpp (SHADE_EMU_NS x8, the emulator) and model/shade_counts.cpp (the counted lanes of
 // the performance model, issue 19). The includer defines SHADE_EMU_NS, SHADE_EMU_F/U/I/M (the 8-lane types) and
-// SHADE_EMU_ENTRY (the entry point's name), and includes this inside namespace shadetwin.
+// SHADE_EMU_ENTRY (the entry point's name), and includes this inside namespace shadetwin; optionally
+// SHADE_EMU_INVOCATION() (a statement run before each 8-pixel vector: the counted build starts an invocation there).
 namespace {
 using F8 = SHADE_EMU_F;
 using V3x = shade::V3<F8>;
@@ -30,6 +31,9 @@ void shadePixelBlocks(const Scene& scene, const GBuffer& g, const emu::DevicePro
   tbb::parallel_for(tbb::blocked_range<size_t>(0, (n + 7) / 8, grain), [&](const tbb::blocked_range<size_t>& r) {
     emu::DenormalScope mode(dev.denormCompute == emu::DenormMode::Flush);
     for (size_t b = r.begin(); b != r.end(); ++b) {
+#ifdef SHADE_EMU_INVOCATION
+      SHADE_EMU_INVOCATION();
+#endif
       PixelBlock p;
       F8 px, py;
       for (int l = 0; l < 8; ++l) {

@@ -128,9 +128,11 @@ vec3 st_cross(vec3 a, vec3 b) {
 #define INOUT(T) T&
 #define INLINE inline
 // ifAnyScope(m): anyLane(m) for the emulator's masks; an object that also tells the counting build (model/op_count.h)
-// where the block ends. loopScope: nothing, or the counting build's loop marker.
+// where the block ends. loopScope, loopIteration: nothing, or the counting build's markers of a loop and of each of
+// its iterations.
 #define IF_ANY(m) if ([[maybe_unused]] auto if_any_scope_ = ifAnyScope(m); if_any_scope_)
-#define FOR if ([[maybe_unused]] auto loop_scope_ = loopScope(Float()); true) for
+#define FOR(...) \
+  if ([[maybe_unused]] auto loop_scope_ = loopScope(Float()); true) for (__VA_ARGS__) if (loopIteration(Float()); true)
 #define SPEC_INT(name, id, value) const int name = value;
 // specMask(b): a mask from a specialization constant; the counting build marks a false one compiled out on devices
 // whose compilers specialize (model/op_count.h specConstantMask).
