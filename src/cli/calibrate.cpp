@@ -449,10 +449,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       p.kind = kSpecBranchK, p.pad = 1;
       const double spec = best.low(timeRun(p, nearest->handle(), count)) - base;
       d.foldsSpecConstants = spec < 0.5 * work;
-      // Two blocks under complementary masks computing the same 32 steps from the same operands (the second block
+      // Two blocks under complementary masks computing the same 32 sums from the same operands (the second block
       // repeats the first's expressions) against two computing different ones: a compiler that numbers values across
-      // the blocks it has made one straight line (and so also hoists what a loop does not change) computes the shared
-      // steps once, about 1/2 + the blocks' merges of the distinct pair's time; one that does not, the same time.
+      // the blocks it has made one straight line computes the shared sums once, about half the distinct pair's time
+      // (and the merges); one that does not, the same time.
       p.kind = kSharedBlocksK;
       const double shared = best.low(timeRun(p, nearest->handle(), count)) - base;
       p.kind = kDistinctBlocksK;

@@ -33,10 +33,13 @@
 //                 counter's, not literals: (32 n + j) & 255), 1 private read + 1 fadd
 //   kind 20 private write  a[i] = a[i] + c at the same indices: 1 private read + 1 fadd + 1 private write (the glints
 //                 kernels' accumulation, shade/glint_lighting.h)
-//   kind 23 shared blocks  each iteration: a = x + 4c under one mask (x0 < lod), b = x + 4c under the complementary
-//                 one, x = (a + b) * 0.5: the second block repeats the first's 32 fadds on the same operands, which a
-//                 compiler that numbers values across the blocks it flattened computes once
-//   kind 24 distinct blocks  the same with b = x + 4 step (pc.step: not the same expression): both blocks' fadds run
+//   kind 23 shared blocks  each iteration: a = (((x + c) + c) + c) + c under one mask (x0 < lod), b the same
+//                 expression under the complementary one, x = (a + b) * 0.5: the second block repeats the first's 32
+//                 fadds on the same operands, which a compiler that numbers values across the blocks it flattened
+//                 computes once. Each block's sums are one expression whose partial sums are temporaries, as the
+//                 shared source's functions are (a variable written step by step would be a register that gallivm
+//                 writes under the mask at every step: no two steps of the blocks would then be the same value).
+//   kind 24 distinct blocks  the same with step in place of c in b (pc.step: not the same expression): both run
 // DEPENDENT (specialization constant 1) runs kinds 0-5 and 16-18 on one chain: time per step is the latency, not the
 // issue rate.
 #extension GL_GOOGLE_include_directive : require
@@ -89,11 +92,9 @@ layout(push_constant) uniform Push {
 #define YADD(k) y = y + pc.c;
 // Shared / distinct blocks (kinds 23, 24).
 #define DECL_AB(k) float a##k = x##k, b##k = x##k;
-#define SETA(k) a##k = x##k;
-#define SETB(k) b##k = x##k;
-#define STEPA(k) a##k = a##k + pc.c;
-#define STEPB(k) b##k = b##k + pc.c;
-#define STEPB2(k) b##k = b##k + pc.step;
+#define SUMA(k) a##k = (((x##k + pc.c) + pc.c) + pc.c) + pc.c;
+#define SUMB(k) b##k = (((x##k + pc.c) + pc.c) + pc.c) + pc.c;
+#define SUMB2(k) b##k = (((x##k + pc.step) + pc.step) + pc.step) + pc.step;
 #define MERGE(k) x##k = (a##k + b##k) * 0.5;
 // Private-array steps (kinds 19, 20): index b + o + k of chain k.
 #define PRIVREAD(o, k) x##k = x##k + a[b + o + uint(k)];
@@ -178,10 +179,9 @@ void main() {
   } else if (KIND == 23u || KIND == 24u) {
     ALL8(DECL_AB)
     for (uint n = 0u; n < pc.iters; ++n) {
-      if (x0 < pc.lod) { ALL8(SETA) X4(ALL8, STEPA) }
+      if (x0 < pc.lod) { ALL8(SUMA) }
       if (!(x0 < pc.lod)) {
-        ALL8(SETB)
-        if (KIND == 23u) { X4(ALL8, STEPB) } else { X4(ALL8, STEPB2) }
+        if (KIND == 23u) { ALL8(SUMB) } else { ALL8(SUMB2) }
       }
       ALL8(MERGE)
     }
