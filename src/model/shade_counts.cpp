@@ -41,8 +41,8 @@ PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInput
   opcount::sceneBrdfKinds = brdfKindsOf(materialRecords(scene, true));  // the pipeline's specialization constant
   // Value numbering (a device whose compiler computes a repeated expression once: DeviceDesc value_numbering) is
   // applied where the counted driver marks its invocations: the shading pass, whose shared source repeats the most (a
-  // BRDF kind's blocks in pdf and eval of one direction, the MIS strategies, a material's view-only terms in the sample
-  // loop). The other passes' counted drivers do not mark them, so they count every operation as written.
+  // BRDF kind's blocks in pdf and eval of one direction). The other passes' counted drivers do not mark them, so they
+  // count every operation as written.
   CoreModel shadeCore = core;
   shadeCore.invocationsMarked = true;
   addTicks(c, countedTicks([&] { counted_pass::shadeCounted(scene, g, in, dev, image, vis); }, shadeCore, &c.scheduledSeconds), 8);

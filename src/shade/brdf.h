@@ -135,18 +135,24 @@ Float phongEval(Float3 wo, Float e, Float3 wi) {
 }
 
 // ---- Blinn-Phong ----
-Float3 sampleBlinnDirection(Float3 wo, Float e, Float2 u) {
+struct BlinnDraw {
+  Float3 wi;
+  Float oh;  // wo.h
+  LobeDraw h;
+};
+
+BlinnDraw drawBlinn(Float3 wo, Float e, Float2 u) {
   LobeDraw h = drawCosineLobe(Float3(0.0f, 0.0f, 1.0f), e, u);
   PRECISE Float oh = dot(wo, h.w);
-  return reflectAbout(wo, h.w, oh);
+  return BlinnDraw(reflectAbout(wo, h.w, oh), oh, h);
 }
 
 BrdfSample sampleBlinn(Float3 wo, Float e, Float2 u) {
-  LobeSample h = sampleCosineLobe(Float3(0.0f, 0.0f, 1.0f), e, u);
-  PRECISE Float oh = dot(wo, h.w);
-  Float3 wi = reflectAbout(wo, h.w, oh);
+  BlinnDraw d = drawBlinn(wo, e, u);
+  Float3 wi = d.wi;
+  Float oh = d.oh;
   Mask ok = oh > 0.0f;
-  PRECISE Float pdf = exDiv(h.pdf, 4.0f * oh);
+  PRECISE Float pdf = exDiv(drawnLobePdf(d.h, e), 4.0f * oh);
   PRECISE Float w = exDiv(e + 8.0f, e + 1.0f) * oh * wi.z;
   w = select(ok && wi.z > 0.0f && wo.z > 0.0f, w, 0.0f);
   return BrdfSample(wi, select(ok, pdf, 0.0f), w);
@@ -359,7 +365,7 @@ Float3 sampleBrdfDirection(BrdfParams p, Float3 wo, Float2 u) {
   Mask m = brdfKindIs(p.kind, kBrdfPhong);
   IF_ANY(m) { r = select(m, drawCosineLobe(phongAxis(wo), p.e, u).w, r); }
   m = brdfKindIs(p.kind, kBrdfBlinn);
-  IF_ANY(m) { r = select(m, sampleBlinnDirection(wo, p.e, u), r); }
+  IF_ANY(m) { r = select(m, drawBlinn(wo, p.e, u).wi, r); }
   m = brdfKindIs(p.kind, kBrdfWard);
   IF_ANY(m) { r = select(m, drawWard(wo, p.ax, p.ay, u).wi, r); }
   m = brdfKindIs(p.kind, kBrdfLafortune);
