@@ -64,6 +64,9 @@ TEST(DeviceDesc, ShippedFilesLoadAndSayWhereTheyComeFrom) {
   EXPECT_EQ(h100.cores, 132);
   EXPECT_NEAR(h100.opsPerSecond[shadetwin::model::kFAdd], 132.0 * 128.0 * 1.98e9, 1e6);
   EXPECT_NEAR(h200.bandwidthBytesPerSecond / h100.bandwidthBytesPerSecond, 4.8 / 3.35, 1e-9);
+  // Re-reads are L1 hits: 32 load/store lanes an SM a clock, 4 bytes each.
+  EXPECT_NEAR(h100.rereadBytesPerSecond, 132.0 * 32.0 * 4.0 * 1.98e9, 1e3);
+  EXPECT_EQ(h200.rereadBytesPerSecond, h100.rereadBytesPerSecond);
   // The texture filters' costs are ordered on every device: nearest >= bilinear >= trilinear lookups per second.
   for (const char* d : {"lavapipe", "swiftshader", "h100", "h200"}) {
     const DeviceDesc x = loadDeviceDesc(shipped(d));
@@ -81,6 +84,7 @@ TEST(DeviceDesc, RoundTripIsLossless) {
   EXPECT_EQ(e.opsPerSecond, d.opsPerSecond);
   EXPECT_EQ(e.lookupsPerSecond, d.lookupsPerSecond);
   EXPECT_EQ(e.dispatchSeconds, d.dispatchSeconds);
+  EXPECT_EQ(e.rereadBytesPerSecond, d.rereadBytesPerSecond);
   for (int r = 0; r < shadetwin::model::kRasterPipelines; ++r) {
     EXPECT_EQ(e.raster[size_t(r)].trianglesPerSecond, d.raster[size_t(r)].trianglesPerSecond);
     EXPECT_EQ(e.raster[size_t(r)].fragmentsPerSecond, d.raster[size_t(r)].fragmentsPerSecond);
@@ -115,6 +119,11 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
   EXPECT_NE(errorOf(replaced("\"value_numbering\": false", "\"value_numbering\": 0")).find("'value_numbering' must be true or false"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"value_numbering\": false,", "")).find("value_numbering"), std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"reread_bytes_per_second\": 33454080000000.0", "\"reread_bytes_per_second\": 0"))
+                .find("'reread_bytes_per_second' must be positive"),
+            std::string::npos);
+  EXPECT_NE(errorOf(replaced("\"reread_bytes_per_second\": 33454080000000.0,", "")).find("missing key 'reread_bytes_per_second'"),
+            std::string::npos);
   EXPECT_NE(errorOf(replaced("\"first_dispatch_seconds\": 0.0", "\"first_dispatch_seconds\": -1")).find("'first_dispatch_seconds' must be a number >= 0"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"compile_seconds_per_word\": 0.0", "\"compile_seconds_per_word\": -1e-9"))

@@ -17,6 +17,7 @@ DeviceDesc device(bool overlap) {
   d.opsPerSecond[kIAlu] = 2e9;
   d.lookupsPerSecond = {4e8, 2e8, 1e8, 8e8};
   d.bandwidthBytesPerSecond = 1e10;
+  d.rereadBytesPerSecond = 5e9;
   d.dispatchSeconds = 1e-4;
   d.raster[kDepthOnly] = {1e7, 1e9, 1e10};
   d.raster[kGbufferRaster] = {5e6, 1e8, 2e9};
@@ -109,11 +110,15 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   c.ops[opcount::kTexUniform] = 800000;      // 1 ms at 8e8/s (texelFetchUniform, per lane)
   c.bytesRead = 10000000, c.bytesWritten = 5000000;  // 1.5 ms at 1e10 B/s
   const Prediction s = predict(c, device(false));
-  {  // re-read buffer bytes (a MIP level's 3x3 footprints) cost a software device their bytes, a GPU nothing
+  {  // re-read buffer bytes (table rows, a MIP level's 3x3 footprints) cost their bytes at the re-read rate, not the
+     // copy rate: a software device adds them to the other terms, a GPU's L1 serves them beside its memory traffic
     PassCounts r = c;
-    r.bytesReread = 20000000;  // 2 ms at 1e10 B/s
-    EXPECT_DOUBLE_EQ(predict(r, device(false)).memorySeconds, 1.5e-3 + 2e-3);
-    EXPECT_DOUBLE_EQ(predict(r, device(true)).memorySeconds, predict(c, device(true)).memorySeconds);
+    r.bytesReread = 20000000;  // 4 ms at 5e9 B/s (2 ms at the copy rate)
+    EXPECT_DOUBLE_EQ(predict(r, device(false)).memorySeconds, 1.5e-3 + 4e-3);
+    EXPECT_DOUBLE_EQ(predict(r, device(true)).memorySeconds, predict(c, device(true)).memorySeconds + 4e-3);
+    DeviceDesc fast = device(false);
+    fast.rereadBytesPerSecond = 2e10;
+    EXPECT_DOUBLE_EQ(predict(r, fast).memorySeconds, 1.5e-3 + 1e-3);
   }
   {  // texture lines the cache simulation missed cost the device's miss time each, in the texture term
     PassCounts m = c;

@@ -43,7 +43,8 @@ enum Kind : uint32_t {
   kBranchUnrolledK, kSpecBranchK, kUniformFetchK, kStreamK, kShiftK, kICmpK, kISelectK,
   kPrivReadK, kPrivWriteK,
   kExDivK, kExSqrtK,  // calibrate_exmath.comp's kinds 0 and 1 (the shared exDiv and exSqrt)
-  kSharedBlocksK, kDistinctBlocksK  // calibrate.comp's kinds 23 and 24
+  kSharedBlocksK, kDistinctBlocksK,  // calibrate.comp's kinds 23 and 24
+  kRereadK                           // calibrate.comp's kind 25
 };
 // Chain steps per iteration of the arithmetic kernels (calibrate.comp STEPS_INDEP, STEPS_DEP).
 constexpr double kSteps = 128.0;
@@ -83,7 +84,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
   // The exact-math kinds are calibrate_exmath.comp's (specialization constants 1 and 2; 0 is the prelude's).
-  std::unique_ptr<vk::Kernel> kernels[2][kDistinctBlocksK + 1];
+  std::unique_ptr<vk::Kernel> kernels[2][kRereadK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
       const bool ex = kind == kExDivK || kind == kExSqrtK;
@@ -422,6 +423,14 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       const double one = passes(1), three = passes(3);
       d.bandwidthBytesPerSecond = best.high(2.0 * double(copyVec4s) * 32.0 / std::max(three - one, 1e-3 * three));
     }
+    {
+      // Re-reads: a table row loaded again and again (kind 25: 16 vec4 loads, 256 bytes, at lane-shared indices of a
+      // cache-resident table, and 16 vec4 fadds, whose share is removed). Not the copy rate: a copy streams each
+      // element once and stores it, a re-read loads an element the caches hold (lavapipe still loads it one lane and
+      // one component at a time; a GPU's cache serves it).
+      const double perByte = 1.0 / rate(kRereadK, 256.0, nearest->handle(), 1.0f, 0.0f);
+      d.rereadBytesPerSecond = 1.0 / std::max(perByte - 0.25 / ops[model::kFAdd], perByte * 0.25);
+    }
     d.dispatchSeconds = dispatch;
     d.firstDispatchSeconds = firstDispatch;
     d.compileSecondsPerWord = compilePerWord;
@@ -683,7 +692,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     for (int c = 0; c < model::kOpClasses; ++c) out << "  " << std::left << std::setw(14) << model::kOpClassNames[c] << ops[size_t(c)] / 1e9 << " Gop/s\n";
     for (int f = 0; f < model::kTexFilters; ++f)
       out << "  " << std::left << std::setw(10) << model::kTexFilterNames[f] << d.lookupsPerSecond[size_t(f)] / 1e6 << " Mlookup/s\n";
-    out << "  bandwidth " << d.bandwidthBytesPerSecond / 1e9 << " GB/s\n  dispatch  " << d.dispatchSeconds * 1e6 << " us\n";
+    out << "  bandwidth " << d.bandwidthBytesPerSecond / 1e9 << " GB/s (copy), re-read " << d.rereadBytesPerSecond / 1e9 << " GB/s\n  dispatch  " << d.dispatchSeconds * 1e6 << " us\n";
     for (int r = 0; r < model::kRasterPipelines; ++r)
       out << "  " << model::kRasterPipelineNames[r] << ": triangles " << d.raster[size_t(r)].trianglesPerSecond / 1e6
           << " M/s, fragments " << d.raster[size_t(r)].fragmentsPerSecond / 1e6 << " M/s, targets "

@@ -50,7 +50,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
     fail(path, std::string("not valid JSON: ") + e.what());
   }
   checkKeys(j, {"device", "name", "verified", "provenance", "lanes", "cores", "clock_ghz", "ops_per_second",
-                "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second",
+                "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second", "reread_bytes_per_second",
                 "dispatch_seconds", "first_dispatch_seconds", "compile_seconds_per_word", "workgroup_seconds", "raster", "texture_miss_seconds",
                 "texture_stream_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
                 "folds_specialization_constants", "value_numbering", "vertex_cache"},
@@ -88,6 +88,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
   d.cacheLineBytes = int(positive(j, "cache_line_bytes", path, ""));
   d.cacheBytes = positive(j, "cache_bytes", path, "");
   d.bandwidthBytesPerSecond = positive(j, "bandwidth_bytes_per_second", path, "");
+  d.rereadBytesPerSecond = positive(j, "reread_bytes_per_second", path, "");
   d.dispatchSeconds = positive(j, "dispatch_seconds", path, "");
   d.firstDispatchSeconds = nonNegative(j, "first_dispatch_seconds", path);
   d.compileSecondsPerWord = nonNegative(j, "compile_seconds_per_word", path);
@@ -161,6 +162,7 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"cache_line_bytes", d.cacheLineBytes},
             {"cache_bytes", d.cacheBytes},
             {"bandwidth_bytes_per_second", d.bandwidthBytesPerSecond},
+            {"reread_bytes_per_second", d.rereadBytesPerSecond},
             {"dispatch_seconds", d.dispatchSeconds},
             {"first_dispatch_seconds", d.firstDispatchSeconds},
             {"compile_seconds_per_word", d.compileSecondsPerWord},

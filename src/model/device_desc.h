@@ -95,6 +95,11 @@ struct DeviceDesc {
   int cacheLineBytes = 0;
   double cacheBytes = 0.0;      // the last level shared by all cores (CPU L2/L3 per machine, GPU L2)
   double bandwidthBytesPerSecond = 0.0;  // read + write of a large buffer
+  // A storage-buffer element re-read from a table the caches hold (a material record, the SH lighting, env's lights,
+  // read by every invocation: PassCounts::bytesReread). Software devices: calibrate's kind 25 (lavapipe loads each
+  // lane's component on its own: ~2x the copy rate's price of a loaded byte, session 39). GPUs: the SMs' L1 load
+  // bandwidth (128 bytes a clock an SM), overlapped with the other units like the rest of memory.
+  double rereadBytesPerSecond = 0.0;
   // A texture line the cache simulation misses (model/op_count.h TexCache), beyond a lookup that hits: calibrate's
   // nearest lookups on a texture 8x the host's last-level cache against a cache-resident one (GPUs: a line at the
   // memory bandwidth).

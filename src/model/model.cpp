@@ -81,12 +81,13 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
                      (c.ops[opcount::kTexMiss] - c.ops[opcount::kTexStreamMiss]) * d.textureMissSeconds +
                      c.ops[opcount::kTexStreamMiss] * d.textureStreamSeconds;  // the cache simulation's missed lines
   p.textureSeconds *= spread;
-  // Software devices (units that do not overlap) load every storage-buffer element on their busy cores, re-reads
-  // included, at calibrate's copy rate; their raster rates already hold a raster pass's vertex fetch and fragment
-  // writes. A GPU's caches serve the re-reads, its memory carries the raster bytes, and its memory system is not one
-  // SM's (no busy-core share).
-  p.memorySeconds = double(c.bytesRead + c.bytesWritten + (d.unitsOverlap ? c.rasterBytes : c.bytesReread)) /
-                    d.bandwidthBytesPerSecond * (d.unitsOverlap ? 1.0 : spread);
+  // Software devices (units that do not overlap) load every storage-buffer element on their busy cores: distinct
+  // bytes at calibrate's copy rate, re-reads of cache-resident table rows at its re-read rate (kind 25); their raster
+  // rates already hold a raster pass's vertex fetch and fragment writes. A GPU's L1 serves the re-reads, its memory
+  // carries the raster bytes, and its memory system is not one SM's (no busy-core share).
+  p.memorySeconds = (double(c.bytesRead + c.bytesWritten + (d.unitsOverlap ? c.rasterBytes : 0)) / d.bandwidthBytesPerSecond +
+                     double(c.bytesReread) / d.rereadBytesPerSecond) *
+                    (d.unitsOverlap ? 1.0 : spread);
   const RasterRates& r = d.raster[size_t(c.rasterPipeline)];
   const uint64_t outside = std::min(c.outsideTriangles, c.triangles);
   p.rasterSeconds = double(c.triangles - outside) / r.trianglesPerSecond + double(outside) * r.outsideTriangleSeconds +

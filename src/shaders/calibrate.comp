@@ -40,6 +40,10 @@
 //                 shared source's functions are (a variable written step by step would be a register that gallivm
 //                 writes under the mask at every step: no two steps of the blocks would then be the same value).
 //   kind 24 distinct blocks  the same with step in place of c in b (pc.step: not the same expression): both run
+//   kind 25 re-read  16 vec4 loads an iteration of a 64-entry storage-buffer table (src's first 64 elements, cache
+//                 resident) at indices every lane shares (the iteration's base + 0..15), summed pairwise (16 vec4
+//                 fadds): the entry points' re-reads of a table row (a material record, the SH lighting, env's lights
+//                 in its loop), which a software device loads one lane at a time where a GPU's cache serves them
 // DEPENDENT (specialization constant 1) runs kinds 0-5 and 16-18 on one chain: time per step is the latency, not the
 // issue rate.
 #extension GL_GOOGLE_include_directive : require
@@ -184,6 +188,15 @@ void main() {
         if (KIND == 23u) { ALL8(SUMB) } else { ALL8(SUMB2) }
       }
       ALL8(MERGE)
+    }
+  } else if (KIND == 25u) {
+    for (uint n = 0u; n < pc.iters; ++n) {
+      const uint b = (n * 16u) & 63u;
+      const vec4 s0 = (src[b] + src[b + 1u]) + (src[b + 2u] + src[b + 3u]);
+      const vec4 s1 = (src[b + 4u] + src[b + 5u]) + (src[b + 6u] + src[b + 7u]);
+      const vec4 s2 = (src[b + 8u] + src[b + 9u]) + (src[b + 10u] + src[b + 11u]);
+      const vec4 s3 = (src[b + 12u] + src[b + 13u]) + (src[b + 14u] + src[b + 15u]);
+      acc += (s0 + s1) + (s2 + s3);
     }
   } else if (KIND == 11u) {
     if (x0 < pc.lod) {
