@@ -47,11 +47,11 @@ TEST(DeviceDesc, ShippedFilesLoadAndSayWhereTheyComeFrom) {
     EXPECT_EQ(h100.opsPerSecond[shadetwin::model::kShift], h100.opsPerSecond[shadetwin::model::kIAlu]);
   }
   {  // integer selects: SwiftShader runs one (after its compare) at several times its integer add's cost (calibrate
-     // kernel 18: ~0.15x the ialu rate), lavapipe beside its other work at no less than its add rate; the GPUs at their
-     // compare/select rate
+     // kernel 18: ~0.15x the ialu rate), lavapipe at a blend's rate, 0.4-0.5x its add rate on session 39's Zen 3 host
+     // (1.4x on session 38's file, the same CPU model); the GPUs at their compare/select rate
     const DeviceDesc ss = loadDeviceDesc(shipped("swiftshader")), lp = loadDeviceDesc(shipped("lavapipe"));
     EXPECT_LT(ss.opsPerSecond[shadetwin::model::kISelect], 0.5 * ss.opsPerSecond[shadetwin::model::kIAlu]);
-    EXPECT_GT(lp.opsPerSecond[shadetwin::model::kISelect], 0.5 * lp.opsPerSecond[shadetwin::model::kIAlu]);
+    EXPECT_GT(lp.opsPerSecond[shadetwin::model::kISelect], 0.3 * lp.opsPerSecond[shadetwin::model::kIAlu]);
     EXPECT_EQ(h100.opsPerSecond[shadetwin::model::kISelect], h100.opsPerSecond[shadetwin::model::kSelect]);
   }
   {  // the post-transform vertex cache: simulated for SwiftShader (its source's direct-mapped 64 entries), not elsewhere
@@ -133,6 +133,12 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
   EXPECT_NE(errorOf(replaced("\"workgroup_seconds\": 0.0", "\"workgroup_seconds\": null")).find("'workgroup_seconds' must be a number >= 0"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"uniform\"", "\"uniforms\"")).find("unknown key 'lookups_per_second.uniforms'"), std::string::npos);
+  {
+    std::string s = good;
+    const size_t at = s.find("\"fetch\": ");
+    s.erase(at, s.find('\n', at) - at + 1);
+    EXPECT_NE(errorOf(s).find("missing key 'lookups_per_second.fetch'"), std::string::npos);
+  }
   {
     std::string s = good;
     const size_t at = s.find("\"texture_miss_seconds\": ") + 24;

@@ -15,7 +15,7 @@ DeviceDesc device(bool overlap) {
   DeviceDesc d;
   d.opsPerSecond.fill(1e9);
   d.opsPerSecond[kIAlu] = 2e9;
-  d.lookupsPerSecond = {4e8, 2e8, 1e8, 8e8};
+  d.lookupsPerSecond = {4e8, 2e8, 1e8, 8e8, 1.6e9};
   d.bandwidthBytesPerSecond = 1e10;
   d.rereadBytesPerSecond = 5e9;
   d.dispatchSeconds = 1e-4;
@@ -108,6 +108,7 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
   c.ops[opcount::kTexTrilinear] = 300000;    // 3 ms at 1e8/s
   c.ops[opcount::kTexNearest] = 400000;      // 1 ms at 4e8/s
   c.ops[opcount::kTexUniform] = 800000;      // 1 ms at 8e8/s (texelFetchUniform, per lane)
+  c.ops[opcount::kTexFetch] = 1600000;       // 1 ms at 1.6e9/s (texelFetch, per-lane coordinates)
   c.bytesRead = 10000000, c.bytesWritten = 5000000;  // 1.5 ms at 1e10 B/s
   const Prediction s = predict(c, device(false));
   {  // re-read buffer bytes (table rows, a MIP level's 3x3 footprints) cost their bytes at the re-read rate, not the
@@ -125,20 +126,20 @@ TEST(Model, SoftwareDevicesAddTheTermsGpusOverlapThem) {
     m.ops[opcount::kTexMiss] = 20000;
     DeviceDesc d = device(false);
     d.textureMissSeconds = 1e-7;  // 2 ms
-    EXPECT_DOUBLE_EQ(predict(m, d).textureSeconds, 5e-3 + 2e-3);
+    EXPECT_DOUBLE_EQ(predict(m, d).textureSeconds, 6e-3 + 2e-3);
     EXPECT_DOUBLE_EQ(predict(m, d).memorySeconds, 1.5e-3);
     m.ops[opcount::kTexStreamMiss] = 5000;  // a prefetched stream's lines cost the stream time instead
     d.textureStreamSeconds = 1e-8;
-    EXPECT_DOUBLE_EQ(predict(m, d).textureSeconds, 5e-3 + 1.5e-3 + 5e-5);
+    EXPECT_DOUBLE_EQ(predict(m, d).textureSeconds, 6e-3 + 1.5e-3 + 5e-5);
     EXPECT_DOUBLE_EQ(predict(m, d).memorySeconds, 1.5e-3);
   }
   EXPECT_DOUBLE_EQ(s.aluSeconds, 2e-3);
-  EXPECT_DOUBLE_EQ(s.textureSeconds, 5e-3);
+  EXPECT_DOUBLE_EQ(s.textureSeconds, 6e-3);
   EXPECT_DOUBLE_EQ(s.memorySeconds, 1.5e-3);
-  EXPECT_DOUBLE_EQ(s.seconds, 2e-3 + 5e-3 + 1.5e-3 + 1e-4);
+  EXPECT_DOUBLE_EQ(s.seconds, 2e-3 + 6e-3 + 1.5e-3 + 1e-4);
   EXPECT_EQ(s.bound, "texture");
   const Prediction g = predict(c, device(true));
-  EXPECT_DOUBLE_EQ(g.seconds, 5e-3 + 1e-4);
+  EXPECT_DOUBLE_EQ(g.seconds, 6e-3 + 1e-4);
   EXPECT_EQ(g.bound, "texture");
   PassCounts idle;  // nothing to do: the launch bounds it
   EXPECT_EQ(predict(idle, device(true)).bound, "launch");

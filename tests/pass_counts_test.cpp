@@ -116,7 +116,8 @@ TEST(PassCounts, RasterAndComputeShapes) {
     if (p.pass == "visibility-fit") {  // per map: its matrix and weights (5 rows) and its SH row (4), as uniform fetches
       EXPECT_GT(p.ops[opcount::kTexUniform], 0.0);
       EXPECT_LE(p.ops[opcount::kTexUniform], 9.0 * scene.visMaps * double(p.invocations));
-      EXPECT_EQ(p.ops[opcount::kTexNearest], scene.visMaps * double(p.invocations));  // the maps themselves
+      EXPECT_EQ(p.ops[opcount::kTexFetch], scene.visMaps * double(p.invocations));  // the maps themselves (texelFetch)
+      EXPECT_EQ(p.ops[opcount::kTexNearest], 0.0);  // no sampler lookups
     }
     // The technique inputs' pipelines are made when the inputs are built: their first dispatch is in the pass.
     if (p.pass == "paraboloid" || p.pass == "sh-project" || p.pass == "sh-reduce") {

@@ -44,7 +44,8 @@ enum Kind : uint32_t {
   kPrivReadK, kPrivWriteK,
   kExDivK, kExSqrtK,  // calibrate_exmath.comp's kinds 0 and 1 (the shared exDiv and exSqrt)
   kSharedBlocksK, kDistinctBlocksK,  // calibrate.comp's kinds 23 and 24
-  kRereadK                           // calibrate.comp's kind 25
+  kRereadK,                          // calibrate.comp's kind 25
+  kFetchK                            // calibrate.comp's kind 26
 };
 // Chain steps per iteration of the arithmetic kernels (calibrate.comp STEPS_INDEP, STEPS_DEP).
 constexpr double kSteps = 128.0;
@@ -84,7 +85,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
   // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
   // The exact-math kinds are calibrate_exmath.comp's (specialization constants 1 and 2; 0 is the prelude's).
-  std::unique_ptr<vk::Kernel> kernels[2][kRereadK + 1];
+  std::unique_ptr<vk::Kernel> kernels[2][kFetchK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
       const bool ex = kind == kExDivK || kind == kExSqrtK;
@@ -405,6 +406,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     d.lookupsPerSecond[model::kBilinear] = rate(kTexK, 1.0, bilinear->handle(), 1.0f, 0.0f);
     d.lookupsPerSecond[model::kTrilinear] = rate(kTexK, 1.0, trilinear->handle(), 1.0f, 1.5f);
     d.lookupsPerSecond[model::kUniformFetch] = rate(kUniformFetchK, 1.0, nearest->handle(), 1.0f, 0.0f);
+    d.lookupsPerSecond[model::kFetch] = rate(kFetchK, 1.0, nearest->handle(), 1.0f, 0.0f);
     {
       // One pass over the buffers against three, the fastest of six (each of three) each: the copy is the noisiest
       // rate on a shared host. Like every rate, a difference: the launch and the 4,096 workgroups' setup cancel

@@ -148,6 +148,7 @@ std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, co
     for (int k = 0; k < model::kOpClasses; ++k) log << " " << model::kOpClassNames[k] << " " << ops[size_t(k)] / inv;
     log << "; lookups nearest " << c.ops[opcount::kTexNearest] / inv << " bilinear " << c.ops[opcount::kTexBilinear] / inv
         << " trilinear " << c.ops[opcount::kTexTrilinear] / inv << " uniform " << c.ops[opcount::kTexUniform] / inv
+        << " fetch " << c.ops[opcount::kTexFetch] / inv
         << "; texture lines " << c.ops[opcount::kTexLine] / inv << " (missed " << c.ops[opcount::kTexMiss] / inv << ", in streams "
         << c.ops[opcount::kTexStreamMiss] / inv << "); "
         << c.invocations << " invocations, " << c.dispatches

@@ -36,8 +36,10 @@ inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd",  "fmul",  "ial
 /// Texture filters the model distinguishes (RGBA32F lookups).
 // uniform: a texelFetch at coordinates every lane of the invocation group shares (shade/prelude.h texelFetchUniform),
 // per lane.
-enum TexFilter { kNearest, kBilinear, kTrilinear, kUniformFetch, kTexFilters };
-inline constexpr const char* kTexFilterNames[kTexFilters] = {"nearest", "bilinear", "trilinear", "uniform"};
+// Lookups by kind: textureLod through a nearest, bilinear or trilinear sampler; texelFetch at coordinates every lane
+// shares (uniform); texelFetch at per-lane integer coordinates (fetch: no scaling, wrapping or level selection).
+enum TexFilter { kNearest, kBilinear, kTrilinear, kUniformFetch, kFetch, kTexFilters };
+inline constexpr const char* kTexFilterNames[kTexFilters] = {"nearest", "bilinear", "trilinear", "uniform", "fetch"};
 /// Raster pipelines the model distinguishes: a triangle's set-up and a covered pixel cost what the pipeline makes of
 /// them (lavapipe: 145 ns a tiny triangle through the G-buffer's, 210 ns through the depth-only shadow pipeline; a
 /// covered pixel 10 ns with four RGBA32F targets and a fragment shader, 0.9 ns depth-only), so each has its rates.
@@ -91,7 +93,7 @@ struct DeviceDesc {
   int cores = 0;           // host cores the driver uses (GPU: SMs)
   double clockGHz = 0.0;   // 0 when not known (software devices run at the host's clock)
   std::array<double, kOpClasses> opsPerSecond{};         // scalar operations per second, whole device
-  std::array<double, kTexFilters> lookupsPerSecond{};    // RGBA32F textureLod lookups per second
+  std::array<double, kTexFilters> lookupsPerSecond{};    // RGBA32F lookups per second, by kind (TexFilter)
   int cacheLineBytes = 0;
   double cacheBytes = 0.0;      // the last level shared by all cores (CPU L2/L3 per machine, GPU L2)
   double bandwidthBytesPerSecond = 0.0;  // read + write of a large buffer

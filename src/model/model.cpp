@@ -78,6 +78,7 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
                      c.ops[opcount::kTexBilinear] / d.lookupsPerSecond[kBilinear] +
                      c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear] +
                      c.ops[opcount::kTexUniform] / d.lookupsPerSecond[kUniformFetch] +
+                     c.ops[opcount::kTexFetch] / d.lookupsPerSecond[kFetch] +
                      (c.ops[opcount::kTexMiss] - c.ops[opcount::kTexStreamMiss]) * d.textureMissSeconds +
                      c.ops[opcount::kTexStreamMiss] * d.textureStreamSeconds;  // the cache simulation's missed lines
   p.textureSeconds *= spread;

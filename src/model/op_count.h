@@ -30,11 +30,12 @@ namespace opcount {
 // (exactMathMix counts those: the GPUs' rate and the scheduler's window share).
 enum Kind {
   kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kShift, kICmp, kISel, kPrivRead, kPrivWrite, kExDiv, kExSqrt,
-  kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kTexLine, kTexMiss, kTexStreamMiss, kKinds
+  kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kTexFetch, kTexLine, kTexMiss, kTexStreamMiss,
+  kKinds
 };
 inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "shift", "icmp", "iselect",
                                           "private_read", "private_write", "ex_div", "ex_sqrt", "tex_lookup", "texel",
-                                          "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform", "tex_line",
+                                          "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform", "tex_fetch", "tex_line",
                                           "tex_miss", "tex_stream_miss"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
 inline void tick(Kind k, uint64_t n = 1) { counts[size_t(k)] += n; }
@@ -402,12 +403,14 @@ template <int N> inline I<N> floatBitsToInt(F<N> a) { return I<N>(emu::floatBits
 template <int N> inline F<N> uintBitsToFloat(U<N> a) { return F<N>(emu::uintBitsToFloat(a.x), Res{a.t, a.v}); }
 template <int N> inline F<N> intBitsToFloat(I<N> a) { return F<N>(emu::intBitsToFloat(a.x), Res{a.t, a.v}); }
 
-/// N texel fetches (one texel each, no filtering), unless inside a loop of an untaken block.
+/// N texel fetches (one texel each at integer coordinates, no sampler), unless inside a loop of an untaken block: a
+/// class of their own (tex_fetch), not a nearest textureLod, which scales, wraps and selects a level first (lavapipe:
+/// about half the fetch rate, calibrate kinds 6 and 26).
 inline void countFetches(int n) {
   if (!counting()) return;
   tick(kTexLookup, uint64_t(n));
   tick(kTexel, uint64_t(n));
-  tick(kTexNearest, uint64_t(n));
+  tick(kTexFetch, uint64_t(n));
 }
 
 /// The dialect's texelFetchUniform: one texel at coordinates every lane shares, fetched per lane by a software device

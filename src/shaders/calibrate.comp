@@ -44,6 +44,8 @@
 //                 resident) at indices every lane shares (the iteration's base + 0..15), summed pairwise (16 vec4
 //                 fadds): the entry points' re-reads of a table row (a material record, the SH lighting, env's lights
 //                 in its loop), which a software device loads one lane at a time where a GPU's cache serves them
+//   kind 26 fetch  texelFetch at kind 6's moving coordinates (the texel its nearest lookup reads, at integer
+//                 coordinates: no sampler scaling, wrapping or level selection); 1 fetch
 // DEPENDENT (specialization constant 1) runs kinds 0-5 and 16-18 on one chain: time per step is the latency, not the
 // issue rate.
 #extension GL_GOOGLE_include_directive : require
@@ -134,6 +136,13 @@ void main() {
     vec2 p = vec2(float(i & 255u), float((i >> 8u) & 255u)) * (1.0 / 256.0);
     for (uint n = 0u; n < pc.iters; ++n) {
       acc += textureLod(tex, p, pc.lod);
+      p = fract(p + vec2(pc.step, pc.step * 0.5));
+    }
+  } else if (KIND == 26u) {
+    const vec2 size = vec2(textureSize(tex, 0));
+    vec2 p = vec2(float(i & 255u), float((i >> 8u) & 255u)) * (1.0 / 256.0);
+    for (uint n = 0u; n < pc.iters; ++n) {
+      acc += texelFetch(tex, ivec2(p * size), 0);
       p = fract(p + vec2(pc.step, pc.step * 0.5));
     }
   } else if (KIND == 15u) {
