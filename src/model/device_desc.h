@@ -99,7 +99,7 @@ struct DeviceDesc {
   double bandwidthBytesPerSecond = 0.0;  // read + write of a large buffer
   // A storage-buffer element re-read from a table the caches hold (a material record, the SH lighting, env's lights,
   // read by every invocation: PassCounts::bytesReread). Software devices: calibrate's kind 25 (lavapipe loads each
-  // lane's component on its own: ~2x the copy rate's price of a loaded byte, session 39). GPUs: the SMs' L1 load
+  // lane's component on its own: ~1.4x the copy rate's price of a byte, session 39). GPUs: the SMs' L1 load
   // bandwidth (128 bytes a clock an SM), overlapped with the other units like the rest of memory.
   double rereadBytesPerSecond = 0.0;
   // A texture line the cache simulation misses (model/op_count.h TexCache), beyond a lookup that hits: calibrate's

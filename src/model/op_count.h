@@ -405,7 +405,7 @@ template <int N> inline F<N> intBitsToFloat(I<N> a) { return F<N>(emu::intBitsTo
 
 /// N texel fetches (one texel each at integer coordinates, no sampler), unless inside a loop of an untaken block: a
 /// class of their own (tex_fetch), not a nearest textureLod, which scales, wraps and selects a level first (lavapipe:
-/// about half the fetch rate, calibrate kinds 6 and 26).
+/// 0.75x the fetch rate, calibrate kinds 6 and 26, session 39).
 inline void countFetches(int n) {
   if (!counting()) return;
   tick(kTexLookup, uint64_t(n));
