@@ -33,11 +33,9 @@ enum OpClass {
 inline constexpr const char* kOpClassNames[kOpClasses] = {"fadd",  "fmul",  "ialu", "imul",    "cvt",          "select",
                                                           "fcmp",  "shift", "icmp", "iselect", "private_read", "private_write",
                                                           "ex_div", "ex_sqrt"};
-/// Texture filters the model distinguishes (RGBA32F lookups).
-// uniform: a texelFetch at coordinates every lane of the invocation group shares (shade/prelude.h texelFetchUniform),
-// per lane.
-// Lookups by kind: textureLod through a nearest, bilinear or trilinear sampler; texelFetch at coordinates every lane
-// shares (uniform); texelFetch at per-lane integer coordinates (fetch: no scaling, wrapping or level selection).
+/// RGBA32F lookups the model distinguishes: textureLod through a nearest, bilinear or trilinear sampler; a texelFetch
+/// at coordinates every lane of the invocation group shares (uniform: shade/prelude.h texelFetchUniform, per lane); a
+/// texelFetch at per-lane integer coordinates (fetch: no scaling, wrapping or level selection).
 enum TexFilter { kNearest, kBilinear, kTrilinear, kUniformFetch, kFetch, kTexFilters };
 inline constexpr const char* kTexFilterNames[kTexFilters] = {"nearest", "bilinear", "trilinear", "uniform", "fetch"};
 /// Raster pipelines the model distinguishes: a triangle's set-up and a covered pixel cost what the pipeline makes of
