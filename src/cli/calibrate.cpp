@@ -10,6 +10,7 @@
 #include <span>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -27,10 +28,9 @@
 namespace shadetwin {
 
 namespace {
-#include "calibrate_comp.inc"
+#include "calibrate_modules.inc"
 #include "calibrate_group_comp.inc"
 #include "calibrate_compile_comp.inc"
-#include "calibrate_exmath_comp.inc"
 
 struct Push {
   uint32_t kind, iters, count, pad;
@@ -83,18 +83,17 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   log << "calibrate: " << ctx.deviceName() << (opts.quick ? " (quick)" : "") << std::endl;
   const VkDescriptorType layout[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                      VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
-  // One pipeline per kind and chain layout (specialization constants 0 and 1); pad = 1 asks for the dependent chain.
-  // The exact-math kinds are calibrate_exmath.comp's (specialization constants 1 and 2; 0 is the prelude's).
+  // One pipeline per kind and chain layout, each its own module (calibrate_modules.inc, built by CMakeLists.txt: the
+  // other kinds' code is not in it). Specialization constants: 0 is the exact-math module's prelude constant (~0u);
+  // 1 is kind 13's DEPENDENT (pad = 1 asks for the dependent chain; the other modules have none, and ignore it).
   std::unique_ptr<vk::Kernel> kernels[2][kFetchK + 1];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
     if (!kernels[dependent][kind]) {
-      const bool ex = kind == kExDivK || kind == kExSqrtK;
-      const uint32_t spec[] = {ex ? ~0u : kind, ex ? kind - kExDivK : dependent, dependent};
-      const std::span<const uint32_t> module = ex ? std::span<const uint32_t>(kSpv_calibrate_exmath_comp)
-                                                  : std::span<const uint32_t>(kSpv_calibrate_comp);
+      const std::span<const uint32_t> module = kCalibrateModules[dependent][kind];
+      if (module.empty()) throw std::logic_error("calibrate: no module for kind " + std::to_string(kind) + (dependent ? " (dependent)" : ""));
+      const uint32_t spec[] = {~0u, dependent};
       kernels[dependent][kind] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, module, layout, sizeof(Push),
-                                                              std::span<const uint32_t>{},
-                                                              std::span<const uint32_t>(spec, ex ? 3 : 2));
+                                                              std::span<const uint32_t>{}, std::span<const uint32_t>(spec));
     }
     return *kernels[dependent][kind];
   };
@@ -180,8 +179,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     earlier.str("");
     std::ostream& out = round + 1 == rounds ? log : earlier;
     const auto roundStart = std::chrono::steady_clock::now();
-    // Launch cost: an empty dispatch of one workgroup, the fastest of many, in the empty kernel's own module (in
-    // calibrate.comp's, SwiftShader's read 132 us against 43 here: a workgroup's setup there is ~33 us, see below).
+    // Launch cost: an empty dispatch of one workgroup, the fastest of many, in the empty kernel's own module.
     Push e{kEmptyK, 0, 0, 0, 1.0f, 0.0f, 0.0f, 0.0f};
     std::vector<double> empties;
     for (int r = 0; r < 15; ++r)
@@ -189,10 +187,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     const double dispatch = best.low(fastestOf(empties));
     double perGroup = 0.0;  // the model's cost per workgroup (the rates below are differences: it cancels there)
     // Per workgroup of 64 invocations: a kernel that does nothing, in a module of its own (calibrate_group.comp), over
-    // 4096 workgroups against 64, the fastest of five each. SwiftShader's setup of a workgroup grows with the module even
-    // where none of its code runs (probes, docs/RESULTS.md session 22): the fadd kernel in calibrate.comp's module read
-    // 16 us per workgroup at 32 steps per iteration and 36 us at 128, its empty kind 33 us; the part that grows with the
-    // module is not modelled yet.
+    // 4096 workgroups against 64, the fastest of five each. (When calibrate.comp was one module of every kernel,
+    // SwiftShader's workgroups there cost ~33-120 us each: not a set-up that grows with the module, as sessions 22-40
+    // read it, but every other kernel's code run under a false mask, SwiftShader not folding the specialization
+    // constant that picked the kernel; docs/RESULTS.md session 41. Each kernel now has its own module.)
     {
       auto groups = [&](uint32_t n) { return fastestAfterWarmUp(3, [&] { return runOnce(group, e, nearest->handle(), 64u * n); }); };
       std::vector<double> many, few;
@@ -234,9 +232,8 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     // A rate from the difference of two runs: N iterations and 2N, N grown in the first round until a run takes half
     // of `target` seconds (and kept in the rounds after, so each run's time is the fastest of every round). The
     // difference is N iterations' work alone: the launch, the workgroups' setup and the prologue and epilogue of each
-    // invocation cancel, whatever the module (SwiftShader's setup of a workgroup in calibrate.comp's module is ~33 us
-    // where the empty kernel's own module reads 0.3: subtracting the latter left 2,048 x 33 us in the fadd kernel's
-    // 0.25 s, a quarter of it).
+    // invocation cancel (subtracting an empty kernel's run instead would leave whatever the two modules' prologues
+    // differ by).
     size_t rateAt = 0;
     int inseparable = 0;  // rates read from one run (printed at the end of the round)
     auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod, uint32_t dependent = 0) {
@@ -244,8 +241,8 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       double t = 0.0, tq = 0.0;  // the runs at N and 2N: in the first round the last pair of the search for N
       if (rateAt == rateIters.size()) {
         // N grows until a run takes half of `target` and N iterations' work is at least half the run's fixed part
-        // (the 2N run at least 1.33x the N run): SwiftShader's workgroup set-up in this module is ~10 ms of a 16,384-invocation
-        // run, so a run at half of a --quick target was mostly set-up and its 2N run only 5% longer.
+        // (the 2N run at least 1.33x the N run): a run at half of a --quick target may be mostly fixed part (it was on
+        // SwiftShader while every kernel shared one module, and its 2N run only 5% longer).
         for (;;) {
           t = timeRun(p, s, count);
           Push q2 = p;
@@ -409,9 +406,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     d.lookupsPerSecond[model::kFetch] = rate(kFetchK, 1.0, nearest->handle(), 1.0f, 0.0f);
     {
       // One pass over the buffers against three, the fastest of six (each of three) each: the copy is the noisiest
-      // rate on a shared host. Like every rate, a difference: the launch and the 4,096 workgroups' setup cancel
-      // (SwiftShader: ~33 us each in calibrate.comp's module, which subtracting the empty module's 0.3 us left in,
-      // reading 0.73 GB/s in three rounds of one calibration).
+      // rate on a shared host. Like every rate, a difference: the launch and the 4,096 workgroups' setup cancel.
       const uint32_t invocations = uint32_t(copyVec4s / 16);
       // The rate is the round's own difference, and the best of rounds keeps the highest rate: the fastest one-pass run
       // of one round against the fastest three-pass run of another would mix two states of the host (one calibration
@@ -460,6 +455,7 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       p.kind = kSpecBranchK, p.pad = 1;
       const double spec = best.low(timeRun(p, nearest->handle(), count)) - base;
       d.foldsSpecConstants = spec < 0.5 * work;
+      p.pad = 0;
       // Two blocks under complementary masks computing the same 32 sums from the same operands (the second block
       // repeats the first's expressions) against two computing different ones: a compiler that numbers values across
       // the blocks it has made one straight line computes the shared sums once, about half the distinct pair's time

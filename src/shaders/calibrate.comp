@@ -46,8 +46,7 @@
 //                 in its loop), which a software device loads one lane at a time where a GPU's cache serves them
 //   kind 26 fetch  texelFetch at kind 6's moving coordinates (the texel its nearest lookup reads, at integer
 //                 coordinates: no sampler scaling, wrapping or level selection); 1 fetch
-// DEPENDENT (specialization constant 1) runs kinds 0-5 and 16-18 on one chain: time per step is the latency, not the
-// issue rate.
+// DEPENDENT runs kinds 0-5 and 16-18 on one chain: time per step is the latency, not the issue rate.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_integer_mix : require
 
@@ -55,12 +54,18 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D tex;
 layout(std430, set = 0, binding = 1) readonly buffer Src { vec4 src[]; };
 layout(std430, set = 0, binding = 2) writeonly buffer Dst { vec4 dst[]; };
-// The kind is a specialization constant: one pipeline per kind, the other kinds' code removed before the JIT
-// (SwiftShader's Subzero takes minutes on the whole shader).
-layout(constant_id = 0) const uint KIND = 0u;
+// The kind is fixed when the module is built (FIXED_KIND; CMakeLists.txt builds one module per kind, the other kinds'
+// branches removed by spirv-opt): a driver that does not fold specialization constants (SwiftShader) ran every other
+// kind's code under a false mask in each dispatch of the one module there was (docs/RESULTS.md, session 41).
+const uint KIND = FIXED_KIND;
 // DEPENDENT: the 32 steps of an iteration run on one chain (each step waits for the previous one), so time per
-// step is the class's latency rather than its issue rate (the latency kernels of the model's scheduler).
+// step is the class's latency rather than its issue rate (the latency kernels of the model's scheduler). Fixed in the
+// module too, except for kind 13, whose block behind a false specialization constant is what it measures.
+#ifdef FIXED_DEPENDENT
+const bool DEPENDENT = FIXED_DEPENDENT;
+#else
 layout(constant_id = 1) const bool DEPENDENT = false;
+#endif
 layout(push_constant) uniform Push {
   uint kind, iters, count, pad;  // kind: the host's record of the pipeline (the shader reads KIND)
   float c, lod, step, pad2;

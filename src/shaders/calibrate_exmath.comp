@@ -19,9 +19,10 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D tex;
 layout(std430, set = 0, binding = 1) readonly buffer Src { vec4 src[]; };
 layout(std430, set = 0, binding = 2) writeonly buffer Dst { vec4 dst[]; };
-// constant_id 0 is the prelude's kSceneBrdfKinds (unused here): the host passes {~0u, kind, dependent}.
-layout(constant_id = 1) const uint KIND = 0u;
-layout(constant_id = 2) const bool DEPENDENT = false;
+// One module per kind and chain layout (CMakeLists.txt: FIXED_KIND, FIXED_DEPENDENT), as calibrate.comp's. constant_id
+// 0 is the prelude's kSceneBrdfKinds (unused here): the host passes ~0u.
+const uint KIND = FIXED_KIND;
+const bool DEPENDENT = FIXED_DEPENDENT;
 layout(push_constant) uniform Push { uint kind, iters, count, pad; float c, lod, step, pad2; } pc;
 
 #define ALL8(OP) OP(0) OP(1) OP(2) OP(3) OP(4) OP(5) OP(6) OP(7)
