@@ -134,6 +134,8 @@ template <int N> inline int loopScope(F32<N>) { return 0; }
 template <int N> inline void loopIteration(F32<N>) {}
 /// The dialect's specMask and texelFetchUniform hooks: a plain mask, and nothing to count.
 template <int N> inline Mask<N> specConstantMask(F32<N>, bool b) { return Mask<N>(b); }
+/// The dialect's uniformMask: a plain mask.
+template <int N> inline Mask<N> runtimeUniformMask(F32<N>, bool b) { return Mask<N>(b); }
 template <int N> inline void countUniformFetches(F32<N>) {}
 /// The dialect's arrayGet / arraySet hooks (a private array at a non-literal index): the value itself.
 template <int N> inline F32<N> indexedRead(F32<N> v) { return v; }

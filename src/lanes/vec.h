@@ -58,6 +58,7 @@ inline bool ifAnyScope(bool m) { return m; }
 inline int loopScope(float) { return 0; }
 inline void loopIteration(float) {}
 inline bool specConstantMask(float, bool b) { return b; }
+inline bool runtimeUniformMask(float, bool b) { return b; }
 inline void countUniformFetches(float) {}
 // The dialect's arrayGet / arraySet hooks: the value itself.
 inline float indexedRead(float v) { return v; }

@@ -380,6 +380,9 @@ template <int N> inline void loopIteration(F<N>) {
 template <int N> inline M<N> specConstantMask(F<N>, bool b) {
   return M<N>(emu::Mask<N>(b), 0, !b && foldsSpecConstants);
 }
+// The dialect's uniformMask: a run-time value no compiler folds, so a block behind a false one counts as any untaken
+// block does (on a device that runs every block: its straight-line operations).
+template <int N> inline M<N> runtimeUniformMask(F<N>, bool b) { return M<N>(emu::Mask<N>(b), 0, false); }
 
 // The dialect's arrayGet / arraySet (shade/prelude.h): the element read (ready one read after the element was) or the
 // value written (the write issues once the value is ready), each counted as one vector operation.

@@ -84,12 +84,13 @@ Uint sampleEnvKdRank(EnvSampling s, Float xi) {
 // Block drawn by the kd-tree fit (u.x) or the alias table (u.x, u.y), then a uniform point in it (u.z, u.w).
 EnvSample sampleEnvBlocks(Sampler2D table, EnvSampling s, Float4 u) {
   Uint k = Uint(0u);
-  if (s.method == kEnvKdTree) k = sampleEnvKdRank(s, u.x);
-  if (s.method == kEnvAlias) {
+  Mask kd = uniformMask(s.method == kEnvKdTree), alias = uniformMask(s.method == kEnvAlias);
+  IF_ANY(kd) { k = select(kd, sampleEnvKdRank(s, u.x), k); }
+  IF_ANY(alias) {
     PRECISE Float x = u.x * float(s.count);
     Uint i = min(Uint(x), Uint(s.count - 1u));
     Float4 a = envBlockRecord(table, i, 1u);
-    k = select(u.y < a.z, i, Uint(a.w));
+    k = select(alias, select(u.y < a.z, i, Uint(a.w)), k);
   }
   Float4 r = envBlockRecord(table, k, 0u);
   Float4 q = envBlockRecord(table, k, 1u);
@@ -166,18 +167,30 @@ Float envInversionPdf(Sampler2D marginal, Sampler2D conditional, EnvSampling s, 
   return envSolidAnglePdf(envInversionUvPdf(marginal, conditional, s, t.x, t.y), t.sinTheta);
 }
 
-// The method's sampler and pdf (s.method is uniform: one branch runs).
+// The method's sampler and pdf (s.method is uniform: a GPU runs one branch, a software device both, the other under a
+// false mask; uniformMask).
 EnvSample sampleEnv(Sampler2D table, Sampler2D texels, EnvSampling s, Float4 u) {
-  EnvSample r = EnvSample(Float3(0.0f, 1.0f, 0.0f), Float(0.0f));
-  if (s.method == kEnvInversion) r = sampleEnvInversion(table, texels, s, u);
-  else r = sampleEnvBlocks(table, s, u);
-  return r;
+  Float3 dir = Float3(0.0f, 1.0f, 0.0f);
+  Float pdf = Float(0.0f);
+  Mask inversion = uniformMask(s.method == kEnvInversion), blocks = !inversion;
+  IF_ANY(inversion) {
+    EnvSample e = sampleEnvInversion(table, texels, s, u);
+    dir = select(inversion, e.dir, dir);
+    pdf = select(inversion, e.pdf, pdf);
+  }
+  IF_ANY(blocks) {
+    EnvSample e = sampleEnvBlocks(table, s, u);
+    dir = select(blocks, e.dir, dir);
+    pdf = select(blocks, e.pdf, pdf);
+  }
+  return EnvSample(dir, pdf);
 }
 
 Float envPdf(Sampler2D table, Sampler2D texels, EnvSampling s, Float3 dir) {
   Float p = Float(0.0f);
-  if (s.method == kEnvInversion) p = envInversionPdf(table, texels, s, dir);
-  else p = envBlocksPdf(table, texels, s, dir);
+  Mask inversion = uniformMask(s.method == kEnvInversion), blocks = !inversion;
+  IF_ANY(inversion) { p = select(inversion, envInversionPdf(table, texels, s, dir), p); }
+  IF_ANY(blocks) { p = select(blocks, envBlocksPdf(table, texels, s, dir), p); }
   return p;
 }
 

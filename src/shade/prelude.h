@@ -57,6 +57,8 @@ layout(constant_id = 0) const uint kSceneBrdfKinds = 0xffffffffu;
 
 // specMask(b): a mask from a specialization constant (the same for every lane, fixed when the pipeline is built).
 bool specMask(bool b) { return b; }
+// uniformMask(b): a mask from a value every invocation shares at run time (a push constant, a settings field).
+bool uniformMask(bool b) { return b; }
 // select(m, a, b): a where m is true, else b. GLSL mix() with a bool selector picks without arithmetic.
 float select(bool m, float a, float b) { return mix(b, a, m); }
 vec2 select(bool m, vec2 a, vec2 b) { return mix(b, a, bvec2(m)); }
@@ -137,6 +139,11 @@ vec3 st_cross(vec3 a, vec3 b) {
 // specMask(b): a mask from a specialization constant; the counting build marks a false one compiled out on devices
 // whose compilers specialize (model/op_count.h specConstantMask).
 inline Mask specMask(bool b) { return specConstantMask(Float(), b); }
+// uniformMask(b): a mask from a value every invocation shares at run time. A block that only some settings run is
+// written IF_ANY(uniformMask(c)) { x = select(m, ..., x); }, not `if (c)`: the software devices run a block behind a
+// false uniform condition too (calibrate, with kind 10's condition a push constant: 109% of its work on lavapipe, 149%
+// on SwiftShader; docs/RESULTS.md session 41), and the counting build counts it only as an IF_ANY block.
+inline Mask uniformMask(bool b) { return runtimeUniformMask(Float(), b); }
 
 using Float2 = ::shadetwin::shade::V2<Float>;
 using Float3 = ::shadetwin::shade::V3<Float>;

@@ -98,6 +98,7 @@ Float4 shadeEnvMis(Sampler2D env, Sampler2D table, Sampler2D texels, EnvSampling
   IF_ANY(geometry) {
     FisFrame F = envFrame(g0, g1, g2, eye);
     Float pd = misDiffuseProbability(diffuse, specular);
+    Mask visible = uniformMask(visMode != kFisVisNone);
     FOR (uint i = 0u; i < ms.sampleCount; i++) {
       // Environment strategy.
       Float4 ue = philoxUniform4(philox4x32(Philox4(pixel, Uint(i), Uint(0u), Uint(0u)), Uint(ms.seed), Uint(ms.frame)));
@@ -105,7 +106,7 @@ Float4 shadeEnvMis(Sampler2D env, Sampler2D table, Sampler2D texels, EnvSampling
       Float3 wie = basisToLocal(F.basis, e.dir);
       Float we = misWeightOverPdf(ms.heuristic, Mask(true), e.pdf, misBrdfPdf(brdf, pd, F.wo, wie));
       Float3 ce = misIntegrand(env, F, brdf, diffuse, specular, e.dir, wie);
-      if (visMode != kFisVisNone) ce = ce * visAt(visMode, vis, F.basis.n, e.dir);
+      IF_ANY(visible) { ce = select(visible, ce * visAt(visMode, vis, F.basis.n, e.dir), ce); }
       sum = sum + ce * we;
       // BRDF strategy.
       Float4 ub = philoxUniform4(philox4x32(Philox4(pixel, Uint(i), Uint(1u), Uint(0u)), Uint(ms.seed), Uint(ms.frame)));
@@ -113,7 +114,7 @@ Float4 shadeEnvMis(Sampler2D env, Sampler2D table, Sampler2D texels, EnvSampling
       Float3 db = basisToWorld(F.basis, wib);
       Float wb = misWeightOverPdf(ms.heuristic, Mask(false), misBrdfPdf(brdf, pd, F.wo, wib), envPdf(table, texels, es, db));
       Float3 cb = misIntegrand(env, F, brdf, diffuse, specular, db, wib);
-      if (visMode != kFisVisNone) cb = cb * visAt(visMode, vis, F.basis.n, db);
+      IF_ANY(visible) { cb = select(visible, cb * visAt(visMode, vis, F.basis.n, db), cb); }
       sum = sum + cb * wb;
     }
     PRECISE Float invN = exDiv(1.0f, Float(float(ms.sampleCount)));

@@ -59,9 +59,10 @@ Float4 shadeFis(Sampler2D atlas, Sampler2D env, uint background, uint mode, Floa
   // lanes that run them without geometry are discarded by the select below).
   IF_ANY(geometry) {
     Float2 offset = pixelOffset(pixel);
+    Mask stochastic = uniformMask(mode == kFisStochastic), visible = uniformMask(visMode != kFisVisNone);
     FOR (uint i = 0u; i < sampleCount; i++) {
       Float2 u = hammersley(Uint(i), Uint(sampleCount));
-      if (mode == kFisStochastic) u = rotatePoint(u, offset);
+      IF_ANY(stochastic) { u = select(stochastic, rotatePoint(u, offset), u); }
       BrdfSample s = sampleBrdf(brdf, F.wo, u);
       Float3 wi = basisToWorld(F.basis, s.wi);
       PRECISE Float l = 0.5f * (log2KwhOverN - exLog2(s.pdf * paraboloidJacobian(wi.z)));
@@ -69,17 +70,19 @@ Float4 shadeFis(Sampler2D atlas, Sampler2D env, uint background, uint mode, Floa
       if (mode != kFisFiltered) l = Float(0.0f);
       Float4 L = textureLod(atlas, paraboloidUv(wi), l);
       PRECISE Float3 term = Float3(L.x, L.y, L.z) * s.weight;
-      if (visMode != kFisVisNone) term = term * visAt(visMode, vis, F.basis.n, wi);
+      IF_ANY(visible) { term = select(visible, term * visAt(visMode, vis, F.basis.n, wi), term); }
       sum = sum + term;
     }
   }
   PRECISE Float invN = exDiv(1.0f, Float(sampleCount));
   Float3 irr = shIrradiance(sh, F.basis.n);
-  if (visMode != kFisVisNone) irr = visIrradiance(visMode, visLight, vis, irr, F.basis.n);
+  Mask visible = uniformMask(visMode != kFisVisNone);
+  IF_ANY(visible) { irr = select(visible, visIrradiance(visMode, visLight, vis, irr, F.basis.n), irr); }
   PRECISE Float3 c = sum * invN * specular + irr * diffuse;
   Float4 bg = Float4(0.0f, 0.0f, 0.0f, 0.0f);
-  if (background == kFisBackgroundAtlas) bg = textureLod(atlas, paraboloidUv(ray), 0.0f);
-  else bg = textureLod(env, equirectUv(ray), 0.0f);
+  Mask atlasBackground = uniformMask(background == kFisBackgroundAtlas), envBackground = !atlasBackground;
+  IF_ANY(atlasBackground) { bg = select(atlasBackground, textureLod(atlas, paraboloidUv(ray), 0.0f), bg); }
+  IF_ANY(envBackground) { bg = select(envBackground, textureLod(env, equirectUv(ray), 0.0f), bg); }
   c = select(geometry, c, Float3(bg.x, bg.y, bg.z));
   c = c * intensity;
   return Float4(c.x, c.y, c.z, 1.0f);
