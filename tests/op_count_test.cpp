@@ -133,6 +133,29 @@ TEST(TexCache, NeighbouringLookupsReuseLinesScatteredOnesDoNot) {
 
 // Shifts are a class of their own (SwiftShader's Subzero runs a vector shift as four scalar ones: calibrate measures
 // ~6 fadds a shift, where an add or xor costs less than one): counted as shift, never as ialu, and the values unchanged.
+// A block behind a false uniform condition (the dialect's uniformMask: a setting, a push constant) runs on a device
+// that runs every block (lavapipe and SwiftShader: calibrate's branch kernel on a push constant, docs/RESULTS.md
+// session 41), so its straight-line operations count there; a GPU skips it; and, unlike a false specialization
+// constant on a device that folds one, no compiler removes it. Its effects are selects on the mask: no value changes.
+TEST(OpCount, UntakenUniformBlocksCountWhereTheDeviceRunsEveryBlock) {
+  const opcount::F<8> x(emu::F32<8>(1.5f));
+  auto block = [&](bool spec, bool everyBlock, bool folds) {
+    opcount::counts = {};
+    opcount::executeEveryBlock = everyBlock, opcount::foldsSpecConstants = folds;
+    const opcount::M<8> m = spec ? specConstantMask(x, false) : runtimeUniformMask(x, false);
+    opcount::F<8> y = x;
+    if (auto scope = ifAnyScope(m); scope) y = select(m, (y + x) * x, y);
+    opcount::executeEveryBlock = false, opcount::foldsSpecConstants = true;
+    EXPECT_EQ(y[0], 1.5f);  // untaken: the value is kept
+    return opcount::counts[opcount::kFAdd] + opcount::counts[opcount::kFMul];
+  };
+  EXPECT_EQ(block(false, true, true), 2u);   // a uniform mask on a software device: the block runs
+  EXPECT_EQ(block(false, true, false), 2u);
+  EXPECT_EQ(block(false, false, true), 0u);  // GPU: skipped
+  EXPECT_EQ(block(true, true, true), 0u);    // a folded specialization constant: compiled out
+  EXPECT_EQ(block(true, true, false), 2u);   // SwiftShader keeps it
+}
+
 TEST(OpCount, ShiftsCountApartFromIntegerAlu) {
   std::mt19937 rng(19);
   for (int seed = 0; seed < 5; ++seed) {
