@@ -8,7 +8,8 @@
 //   - No `if`/`?:`/`while` on a Mask: use select(m, a, b) (a where m). Loops run a uniform count.
 //     IF_ANY(m) { x = select(m, f(...), x); } skips work no lane needs (C++: when no lane of the
 //     vector has m; GLSL: per invocation). Every effect inside must be a select on m, so the result
-//     never depends on which lanes share a vector.
+//     never depends on which lanes share a vector. A branch on a uniform setting is IF_ANY(uniformMask(c)) with the
+//     same selects, not `if (c)`: the software devices run its untaken side too, and the counting build counts it so.
 //   - No raw '/', sqrt, inversesqrt, normalize, exp, log, pow, sin, cos, fma, mix, dot, length in
 //     shared code: the exact-math layer (exact_math.h) and the dialect's own dot/cross/lerp are
 //     the only sources of those. The C++ lane types have no operator/, so a raw '/' fails the build.
