@@ -131,8 +131,6 @@ TEST(TexCache, NeighbouringLookupsReuseLinesScatteredOnesDoNot) {
 
 }  // namespace
 
-// Shifts are a class of their own (SwiftShader's Subzero runs a vector shift as four scalar ones: calibrate measures
-// ~6 fadds a shift, where an add or xor costs less than one): counted as shift, never as ialu, and the values unchanged.
 // A block behind a false uniform condition (the dialect's uniformMask: a setting, a push constant) runs on a device
 // that runs every block (lavapipe and SwiftShader: calibrate's branch kernel on a push constant, docs/RESULTS.md
 // session 41), so its straight-line operations count there; a GPU skips it; and, unlike a false specialization
@@ -156,6 +154,8 @@ TEST(OpCount, UntakenUniformBlocksCountWhereTheDeviceRunsEveryBlock) {
   EXPECT_EQ(block(true, true, false), 2u);   // SwiftShader keeps it
 }
 
+// Shifts are a class of their own (SwiftShader's Subzero runs a vector shift as four scalar ones: calibrate measures
+// ~6 fadds a shift, where an add or xor costs less than one): counted as shift, never as ialu, and the values unchanged.
 TEST(OpCount, ShiftsCountApartFromIntegerAlu) {
   std::mt19937 rng(19);
   for (int seed = 0; seed < 5; ++seed) {

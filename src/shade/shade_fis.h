@@ -57,9 +57,10 @@ Float4 shadeFis(Sampler2D atlas, Sampler2D env, uint background, uint mode, Floa
   PRECISE Float3 sum = Float3(0.0f, 0.0f, 0.0f);
   // Background pixels skip the samples (a vector or invocation with no geometry does no work; the
   // lanes that run them without geometry are discarded by the select below).
+  Mask visible = uniformMask(visMode != kFisVisNone);
   IF_ANY(geometry) {
     Float2 offset = pixelOffset(pixel);
-    Mask stochastic = uniformMask(mode == kFisStochastic), visible = uniformMask(visMode != kFisVisNone);
+    Mask stochastic = uniformMask(mode == kFisStochastic);
     FOR (uint i = 0u; i < sampleCount; i++) {
       Float2 u = hammersley(Uint(i), Uint(sampleCount));
       IF_ANY(stochastic) { u = select(stochastic, rotatePoint(u, offset), u); }
@@ -76,7 +77,6 @@ Float4 shadeFis(Sampler2D atlas, Sampler2D env, uint background, uint mode, Floa
   }
   PRECISE Float invN = exDiv(1.0f, Float(sampleCount));
   Float3 irr = shIrradiance(sh, F.basis.n);
-  Mask visible = uniformMask(visMode != kFisVisNone);
   IF_ANY(visible) { irr = select(visible, visIrradiance(visMode, visLight, vis, irr, F.basis.n), irr); }
   PRECISE Float3 c = sum * invN * specular + irr * diffuse;
   Float4 bg = Float4(0.0f, 0.0f, 0.0f, 0.0f);
