@@ -9,6 +9,8 @@
 //     must use select() or uniform loops.
 #pragma once
 
+#include <immintrin.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -137,6 +139,33 @@ template <int N> inline Mask<N> specConstantMask(F32<N>, bool b) { return Mask<N
 /// The dialect's uniformMask: a plain mask.
 template <int N> inline Mask<N> runtimeUniformMask(F32<N>, bool b) { return Mask<N>(b); }
 template <int N> inline void countUniformFetches(F32<N>) {}
+/// x86 MINPS / MAXPS per lane: `a < b ? a : b` and `a > b ? a : b` (b where unordered or equal), made by the min/max
+/// instruction itself. The devices' FMin/FMax are those instructions (llvmpipe's and SwiftShader's x86 back ends), so
+/// under a flushing stage's DAZ a subnormal operand reads as zero in them, while a select of the same compare keeps its
+/// bits. Written as a compare and a select, GCC makes a min instruction of it at -O1 and above but not at -Og, and the
+/// emulator's bits would follow the optimisation level (seen: verify math's atan2 in the fragment stage at -Og).
+template <int N>
+inline F32<N> minMachine(F32<N> a, F32<N> b) {
+  F32<N> r;
+  const float* pa = reinterpret_cast<const float*>(&a.v);
+  const float* pb = reinterpret_cast<const float*>(&b.v);
+  float* pr = reinterpret_cast<float*>(&r.v);
+  int i = 0;
+  for (; i + 4 <= N; i += 4) _mm_storeu_ps(pr + i, _mm_min_ps(_mm_loadu_ps(pa + i), _mm_loadu_ps(pb + i)));
+  for (; i < N; ++i) pr[i] = _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(pa[i]), _mm_set_ss(pb[i])));
+  return r;
+}
+template <int N>
+inline F32<N> maxMachine(F32<N> a, F32<N> b) {
+  F32<N> r;
+  const float* pa = reinterpret_cast<const float*>(&a.v);
+  const float* pb = reinterpret_cast<const float*>(&b.v);
+  float* pr = reinterpret_cast<float*>(&r.v);
+  int i = 0;
+  for (; i + 4 <= N; i += 4) _mm_storeu_ps(pr + i, _mm_max_ps(_mm_loadu_ps(pa + i), _mm_loadu_ps(pb + i)));
+  for (; i < N; ++i) pr[i] = _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(pa[i]), _mm_set_ss(pb[i])));
+  return r;
+}
 /// The dialect's arrayGet / arraySet hooks (a private array at a non-literal index): the value itself.
 template <int N> inline F32<N> indexedRead(F32<N> v) { return v; }
 template <int N> inline I32<N> indexedRead(I32<N> v) { return v; }

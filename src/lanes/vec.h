@@ -2,6 +2,8 @@
 // operators. Operators are hidden friends, so a uniform `float` converts to T on either side.
 #pragma once
 
+#include <xmmintrin.h>
+
 namespace shadetwin::shade {
 
 template <class T>
@@ -53,6 +55,10 @@ inline uint32_t select(bool m, uint32_t a, uint32_t b) { return m ? a : b; }
 inline int32_t select(bool m, int32_t a, int32_t b) { return m ? a : b; }
 inline bool select(bool m, bool a, bool b) { return m ? a : b; }
 inline bool anyLane(bool m) { return m; }
+// The dialect's min/max hooks (shade/prelude.h; emu/lanes.h minMachine): MINSS / MAXSS themselves, `a < b ? a : b` and
+// `a > b ? a : b`, so a flushing stage's DAZ reads a subnormal operand as zero as the devices' FMin/FMax do.
+inline float minMachine(float a, float b) { return _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(a), _mm_set_ss(b))); }
+inline float maxMachine(float a, float b) { return _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(a), _mm_set_ss(b))); }
 // The dialect's IF_ANY and FOR hooks (shade/prelude.h): nothing for the scalar and emulator builds.
 inline bool ifAnyScope(bool m) { return m; }
 inline int loopScope(float) { return 0; }

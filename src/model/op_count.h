@@ -384,6 +384,17 @@ template <int N> inline M<N> specConstantMask(F<N>, bool b) {
 // block does (on a device that runs every block: its straight-line operations).
 template <int N> inline M<N> runtimeUniformMask(F<N>, bool b) { return M<N>(emu::Mask<N>(b), 0, false); }
 
+// The dialect's min/max (shade/prelude.h): counted as the compare and select they were written as (a GPU's min is one
+// operation, but the calibrated classes price it so), the value the emulator's min/max instruction gives.
+template <int N> inline F<N> minMachine(F<N> a, F<N> b) {
+  const F<N> s = select(a < b, a, b);
+  return F<N>(emu::minMachine(a.x, b.x), Res{s.t, s.v});
+}
+template <int N> inline F<N> maxMachine(F<N> a, F<N> b) {
+  const F<N> s = select(b < a, a, b);
+  return F<N>(emu::maxMachine(a.x, b.x), Res{s.t, s.v});
+}
+
 // The dialect's arrayGet / arraySet (shade/prelude.h): the element read (ready one read after the element was) or the
 // value written (the write issues once the value is ready), each counted as one vector operation.
 template <int N> inline F<N> indexedRead(F<N> v) { return F<N>(v.x, op(kPrivRead, v.t)); }

@@ -210,8 +210,10 @@ inline ::shadetwin::shade::V4<F> texture(const Sampler2D& s, ::shadetwin::shade:
 }
 
 inline Float abs(Float x) { return uintBitsToFloat(floatBitsToUint(x) & 0x7fffffffu); }
-inline Float min(Float a, Float b) { return select(b < a, b, a); }  // GLSL: y if y < x, else x
-inline Float max(Float a, Float b) { return select(a < b, b, a); }  // GLSL: y if x < y, else x
+// GLSL min: y if y < x, else x; max: y if x < y, else x. The machine's min/max (emu/lanes.h minMachine), not a select:
+// under a flushing stage's DAZ they read a subnormal as zero, as the devices' FMin/FMax do, at any optimisation level.
+inline Float min(Float a, Float b) { return minMachine(b, a); }
+inline Float max(Float a, Float b) { return maxMachine(b, a); }
 inline Int min(Int a, Int b) { return select(b < a, b, a); }
 inline Int max(Int a, Int b) { return select(a < b, b, a); }
 inline Uint min(Uint a, Uint b) { return select(b < a, b, a); }
