@@ -151,6 +151,9 @@ inline F32<N> minMachine(F32<N> a, F32<N> b) {
   const float* pb = reinterpret_cast<const float*>(&b.v);
   float* pr = reinterpret_cast<float*>(&r.v);
   int i = 0;
+#ifdef __AVX__  // whole 8-lane registers (two 4-lane halves would go through memory)
+  for (; i + 8 <= N; i += 8) _mm256_storeu_ps(pr + i, _mm256_min_ps(_mm256_loadu_ps(pa + i), _mm256_loadu_ps(pb + i)));
+#endif
   for (; i + 4 <= N; i += 4) _mm_storeu_ps(pr + i, _mm_min_ps(_mm_loadu_ps(pa + i), _mm_loadu_ps(pb + i)));
   for (; i < N; ++i) pr[i] = _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(pa[i]), _mm_set_ss(pb[i])));
   return r;
@@ -162,6 +165,9 @@ inline F32<N> maxMachine(F32<N> a, F32<N> b) {
   const float* pb = reinterpret_cast<const float*>(&b.v);
   float* pr = reinterpret_cast<float*>(&r.v);
   int i = 0;
+#ifdef __AVX__  // whole 8-lane registers (two 4-lane halves would go through memory)
+  for (; i + 8 <= N; i += 8) _mm256_storeu_ps(pr + i, _mm256_max_ps(_mm256_loadu_ps(pa + i), _mm256_loadu_ps(pb + i)));
+#endif
   for (; i + 4 <= N; i += 4) _mm_storeu_ps(pr + i, _mm_max_ps(_mm_loadu_ps(pa + i), _mm_loadu_ps(pb + i)));
   for (; i < N; ++i) pr[i] = _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(pa[i]), _mm_set_ss(pb[i])));
   return r;
