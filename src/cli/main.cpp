@@ -123,10 +123,10 @@ int main(int argc, char** argv) {
       sub->add_option("--seeds", vo.seeds, "run N consecutive seeds from --seed (rows only for configurations that differ)")
           ->check(CLI::Range(1, 100000));
     }
-    if (w != "math")
-      sub->add_option("--profile-set", vo.profileSet,
-                      "KEY=VALUE: run the emulator with an alternative value of a device-profile field (e.g. "
-                      "maskedFragmentLanes=skip), to measure what the profile's choice is worth; repeatable");
+    sub->add_option("--profile-set", vo.profileSet,
+                    "KEY=VALUE: run the emulator with an alternative value of a device-profile field (e.g. "
+                    "maskedFragmentLanes=skip; math: denormCompute / denormFragment), to measure what the profile's "
+                    "choice is worth; repeatable");
   }
   app.add_subcommand("devices", "list Vulkan devices");
   shadetwin::RenderOptions ro;

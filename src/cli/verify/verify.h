@@ -21,7 +21,7 @@ struct VerifyOptions : SceneOverrides {  // the shared scene options of the suit
   std::string stages;         // texture: "compute", "fragment" or both (empty = both)
   bool implicitLod = false;   // texture: fragment-stage texture() with the LOD from quad derivatives
   uint64_t seeds = 1;         // texture: run the seeds seed .. seed + seeds - 1
-  std::vector<std::string> profileSet;  // every suite but math (raster and the pass suites too): KEY=VALUE overrides of the device profile (emu::setProfileField)
+  std::vector<std::string> profileSet;  // every suite (math: the denormal modes): KEY=VALUE overrides of the device profile (emu::setProfileField)
   std::string image;          // texture: sample this image file (MIP chain from the shared kernel) instead of random textures
   std::string junit, json;    // every suite: --junit FILE (JUnit XML), --json FILE (the same as data)
   std::string heatmap;        // image suites: --heatmap FILE.png, a ULP heat map of every differing channel

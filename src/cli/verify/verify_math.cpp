@@ -85,7 +85,11 @@ bool sameBits(float a, float b) {
 
 int verifyMath(const VerifyOptions& opts, std::ostream& out) {
   vk::Context ctx({opts.device, opts.validate});
-  const emu::DeviceProfile& profile = emu::profileForDevice(ctx.deviceName());
+  emu::DeviceProfile profile = emu::profileForDevice(ctx.deviceName());
+  for (const std::string& kv : opts.profileSet) {  // e.g. denormFragment=preserve: what the profile's mode is worth
+    emu::setProfileField(profile, kv);
+    out << "profile override: " << kv << "\n";
+  }
   const bool fragFlush = profile.denorm(emu::Stage::Fragment) == emu::DenormMode::Flush;
   const bool compFlush = profile.denorm(emu::Stage::Compute) == emu::DenormMode::Flush;
   out << "device: " << ctx.deviceName() << " (profile " << profile.name << (profile.verified ? "" : ", unverified")
@@ -140,7 +144,18 @@ int verifyMath(const VerifyOptions& opts, std::ostream& out) {
       }
       ok = ok && s[0][compFlush] && s[1][fragFlush];
       same += ok;
-      if (!ok) tally.noteDifference(int64_t(i), scalar[3 * i], gpuComp[3 * i]);  // the reports': scalar vs compute
+      if (!ok) {  // the reports' first difference: the first component and comparison that differ
+        const float* stageOut[2] = {gpuComp.data(), gpuFrag.data()};
+        const float* cpp[2] = {compFlush ? scalarFlush.data() : scalar.data(), fragFlush ? scalarFlush.data() : scalar.data()};
+        bool noted = false;
+        for (int k = 0; k < 3 && !noted; ++k)
+          for (int st = 0; st < 2 && !noted; ++st)
+            if (!sameBits(cpp[st][3 * i + k], stageOut[st][3 * i + k]))
+              tally.noteDifference(int64_t(i), cpp[st][3 * i + k], stageOut[st][3 * i + k]), noted = true;
+        for (int k = 0; k < 3 && !noted; ++k)
+          if (!sameBits(scalar[3 * i + k], simd[3 * i + k]))
+            tally.noteDifference(int64_t(i), scalar[3 * i + k], simd[3 * i + k]), noted = true;
+      }
       for (int a = 0; a < 2; ++a)
         for (int b = 0; b < 2; ++b) st[a][b] += s[a][b];
       double ref = reference(fn, in[3 * i], in[3 * i + 1], in[3 * i + 2]);
