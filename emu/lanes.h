@@ -144,34 +144,31 @@ template <int N> inline void countUniformFetches(F32<N>) {}
 /// under a flushing stage's DAZ a subnormal operand reads as zero in them, while a select of the same compare keeps its
 /// bits. Written as a compare and a select, GCC makes a min instruction of it at -O1 and above but not at -Og, and the
 /// emulator's bits would follow the optimisation level (seen: verify math's atan2 in the fragment stage at -Og).
-template <int N>
-inline F32<N> minMachine(F32<N> a, F32<N> b) {
+template <bool Max, int N>
+inline F32<N> minMaxMachine(F32<N> a, F32<N> b) {
   F32<N> r;
   const float* pa = reinterpret_cast<const float*>(&a.v);
   const float* pb = reinterpret_cast<const float*>(&b.v);
   float* pr = reinterpret_cast<float*>(&r.v);
   int i = 0;
 #ifdef __AVX__  // whole 8-lane registers (two 4-lane halves would go through memory)
-  for (; i + 8 <= N; i += 8) _mm256_storeu_ps(pr + i, _mm256_min_ps(_mm256_loadu_ps(pa + i), _mm256_loadu_ps(pb + i)));
+  for (; i + 8 <= N; i += 8) {
+    const __m256 x = _mm256_loadu_ps(pa + i), y = _mm256_loadu_ps(pb + i);
+    _mm256_storeu_ps(pr + i, Max ? _mm256_max_ps(x, y) : _mm256_min_ps(x, y));
+  }
 #endif
-  for (; i + 4 <= N; i += 4) _mm_storeu_ps(pr + i, _mm_min_ps(_mm_loadu_ps(pa + i), _mm_loadu_ps(pb + i)));
-  for (; i < N; ++i) pr[i] = _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(pa[i]), _mm_set_ss(pb[i])));
+  for (; i + 4 <= N; i += 4) {
+    const __m128 x = _mm_loadu_ps(pa + i), y = _mm_loadu_ps(pb + i);
+    _mm_storeu_ps(pr + i, Max ? _mm_max_ps(x, y) : _mm_min_ps(x, y));
+  }
+  for (; i < N; ++i) {
+    const __m128 x = _mm_set_ss(pa[i]), y = _mm_set_ss(pb[i]);
+    pr[i] = _mm_cvtss_f32(Max ? _mm_max_ss(x, y) : _mm_min_ss(x, y));
+  }
   return r;
 }
-template <int N>
-inline F32<N> maxMachine(F32<N> a, F32<N> b) {
-  F32<N> r;
-  const float* pa = reinterpret_cast<const float*>(&a.v);
-  const float* pb = reinterpret_cast<const float*>(&b.v);
-  float* pr = reinterpret_cast<float*>(&r.v);
-  int i = 0;
-#ifdef __AVX__  // whole 8-lane registers (two 4-lane halves would go through memory)
-  for (; i + 8 <= N; i += 8) _mm256_storeu_ps(pr + i, _mm256_max_ps(_mm256_loadu_ps(pa + i), _mm256_loadu_ps(pb + i)));
-#endif
-  for (; i + 4 <= N; i += 4) _mm_storeu_ps(pr + i, _mm_max_ps(_mm_loadu_ps(pa + i), _mm_loadu_ps(pb + i)));
-  for (; i < N; ++i) pr[i] = _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(pa[i]), _mm_set_ss(pb[i])));
-  return r;
-}
+template <int N> inline F32<N> minMachine(F32<N> a, F32<N> b) { return minMaxMachine<false>(a, b); }
+template <int N> inline F32<N> maxMachine(F32<N> a, F32<N> b) { return minMaxMachine<true>(a, b); }
 /// The dialect's arrayGet / arraySet hooks (a private array at a non-literal index): the value itself.
 template <int N> inline F32<N> indexedRead(F32<N> v) { return v; }
 template <int N> inline I32<N> indexedRead(I32<N> v) { return v; }
