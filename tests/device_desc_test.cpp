@@ -85,6 +85,8 @@ TEST(DeviceDesc, RoundTripIsLossless) {
   EXPECT_EQ(e.lookupsPerSecond, d.lookupsPerSecond);
   EXPECT_EQ(e.dispatchSeconds, d.dispatchSeconds);
   EXPECT_EQ(e.rereadBytesPerSecond, d.rereadBytesPerSecond);
+  EXPECT_EQ(e.codeWords, d.codeWords);
+  EXPECT_EQ(e.codeSlowdown, d.codeSlowdown);
   for (int r = 0; r < shadetwin::model::kRasterPipelines; ++r) {
     EXPECT_EQ(e.raster[size_t(r)].trianglesPerSecond, d.raster[size_t(r)].trianglesPerSecond);
     EXPECT_EQ(e.raster[size_t(r)].fragmentsPerSecond, d.raster[size_t(r)].fragmentsPerSecond);
@@ -130,6 +132,24 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
                 .find("'compile_seconds_per_word' must be a number >= 0"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"compile_seconds_per_word\": 0.0,", "")).find("compile_seconds_per_word"), std::string::npos);
+  // The code-size term (session 43): points of increasing size, slowdowns of at least 1, as many of each; a file
+  // written before it is refused by name.
+  {
+    const std::string empty = "\"code_size\": {\n    \"slowdown\": [],\n    \"words\": []\n  }";
+    auto with = [&](const std::string& slowdown, const std::string& words) {
+      return errorOf(replaced(empty, "\"code_size\": {\"slowdown\": " + slowdown + ", \"words\": " + words + "}"));
+    };
+    EXPECT_EQ(with("[1, 1.5, 2]", "[16000, 56000, 219000]"), "");
+    EXPECT_NE(with("[1, 1.5]", "[16000, 56000, 219000]").find("must have the same length"), std::string::npos);
+    EXPECT_NE(with("[1, 1.5, 2]", "[16000, 16000, 219000]").find("'code_size.words' must be positive and increasing"), std::string::npos);
+    EXPECT_NE(with("[1, 0.9, 2]", "[16000, 56000, 219000]").find("'code_size.slowdown' must be numbers >= 1"), std::string::npos);
+    EXPECT_NE(with("1.5", "[16000]").find("'code_size.slowdown' must be an array"), std::string::npos);
+    std::string s = good;
+    const size_t at = s.find("  " + empty);
+    ASSERT_NE(at, std::string::npos);
+    s.erase(at, empty.size() + 4);  // the key, its value, the comma and the newline
+    EXPECT_NE(errorOf(s).find("missing key 'code_size'"), std::string::npos) << errorOf(s);
+  }
   EXPECT_NE(errorOf(replaced("\"workgroup_seconds\": 0.0", "\"workgroup_seconds\": null")).find("'workgroup_seconds' must be a number >= 0"),
             std::string::npos);
   EXPECT_NE(errorOf(replaced("\"uniform\"", "\"uniforms\"")).find("unknown key 'lookups_per_second.uniforms'"), std::string::npos);

@@ -2,6 +2,7 @@
 // filter is divided by its rate, software devices add the terms and GPUs overlap them, the largest term is the bound.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <iomanip>
 #include <string>
 
@@ -257,6 +258,35 @@ TEST(Model, ExactDivisionsAndSquareRootsAreCostedAtTheirOwnRates) {
   DeviceDesc d = device(false);
   d.opsPerSecond[kExDiv] = 1e7, d.opsPerSecond[kExSqrt] = 2e7;
   EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 32.0 / 1e7 + 16.0 / 2e7 + 8.0 / 1e9);
+}
+
+// A module larger than calibrate's first point runs its ALU time slower by the measured slowdown at its size (linear in
+// log2 of the size between two points, the last point's beyond them); the other terms do not change, and a module at or
+// below the first point (or a device without points) costs its rates.
+TEST(Model, ALargerModuleRunsItsAluTimeAtTheMeasuredSlowdown) {
+  PassCounts c;
+  std::array<uint64_t, opcount::kKinds> t{};
+  t[opcount::kExDiv] = 4, t[opcount::kFMul] = 1, t[opcount::kTexBilinear] = 3;
+  addTicks(c, t, 8);
+  DeviceDesc d = device(false);
+  c.moduleWords = 1u << 20;
+  const Prediction base = predict(c, d);  // no points: the term is off
+  EXPECT_EQ(base.codeFactor, 1.0);
+  d.codeWords = {16000, 64000, 256000}, d.codeSlowdown = {1.0, 1.25, 2.0};
+  for (uint64_t words : {0ull, 1000ull, 16000ull}) {
+    c.moduleWords = words;
+    EXPECT_EQ(predict(c, d).aluSeconds, base.aluSeconds) << words;
+    EXPECT_EQ(codeSizeFactor(d, words), 1.0);
+  }
+  for (const auto& [words, factor] : {std::pair{32000ull, 1.125}, {64000ull, 1.25}, {128000ull, 1.625}, {256000ull, 2.0},
+                                      {1ull << 22, 2.0}, {24000ull, 1.0 + 0.25 * std::log2(1.5) / 2.0}}) {
+    c.moduleWords = words;
+    const Prediction p = predict(c, d);
+    EXPECT_DOUBLE_EQ(p.codeFactor, factor) << words;
+    EXPECT_DOUBLE_EQ(p.aluSeconds, base.aluSeconds * factor) << words;
+    EXPECT_EQ(p.textureSeconds, base.textureSeconds) << words;
+    EXPECT_DOUBLE_EQ(p.seconds - p.aluSeconds, base.seconds - base.aluSeconds) << words;
+  }
 }
 
 // The portable routines are straight-line: one vector's operations by kind, the same for any operands, and every kind

@@ -71,6 +71,9 @@ TEST_P(PassCountsCoverage, EveryPassTheFrameRunsIsCountedWithTheEmulatorsBits) {
       const bool glintsKernel = p.pass == "glint-lighting" || (p.pass == "shade" && scene.technique == "glints");
       EXPECT_EQ(p.ops[opcount::kPrivWrite] > 0.0, glintsKernel) << p.pass;
       EXPECT_EQ(p.ops[opcount::kPrivRead] > 0.0, glintsKernel) << p.pass;
+      // Compute passes name the size of the module they run (the code-size term); raster passes none.
+      EXPECT_EQ(p.moduleWords > 0, p.triangles == 0) << p.pass;
+      EXPECT_GE(p.moduleWords, p.pipelines ? p.pipelineWords / p.pipelines : 0) << p.pass;
     }
     EXPECT_EQ(ran, counted) << GetParam().scene << " " << scene.technique << " on " << dev->name;
     EXPECT_TRUE(f.differing.empty()) << f.differing.front();

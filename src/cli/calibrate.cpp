@@ -87,7 +87,18 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   // other kinds' code is not in it). Specialization constants: 0 is the exact-math module's prelude constant (~0u);
   // 1 is kind 13's DEPENDENT (pad = 1 asks for the dependent chain; the other modules have none, and ignore it).
   std::unique_ptr<vk::Kernel> kernels[2][kFetchK + 1];
+  // The division kernel's larger modules (the code-size term): while `sized` is set, the kernel runs from that one.
+  std::span<const uint32_t> sized{};
+  std::unique_ptr<vk::Kernel> sizedKernels[std::size(kCalibrateCodeSizeModules)];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
+    for (size_t m = 0; !sized.empty() && m < std::size(kCalibrateCodeSizeModules); ++m) {
+      if (sized.data() != kCalibrateCodeSizeModules[m].data()) continue;
+      const uint32_t spec[] = {~0u, 0u};
+      if (!sizedKernels[m])
+        sizedKernels[m] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, sized, layout, sizeof(Push),
+                                                       std::span<const uint32_t>{}, std::span<const uint32_t>(spec));
+      return *sizedKernels[m];
+    }
     if (!kernels[dependent][kind]) {
       const std::span<const uint32_t> module = kCalibrateModules[dependent][kind];
       if (module.empty()) throw std::logic_error("calibrate: no module for kind " + std::to_string(kind) + (dependent ? " (dependent)" : ""));
@@ -236,8 +247,9 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     // differ by).
     size_t rateAt = 0;
     int inseparable = 0;  // rates read from one run (printed at the end of the round)
-    auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod, uint32_t dependent = 0) {
-      Push p{kind, 16, 0, dependent, c, lod, 0.0173f, 0.0f};
+    auto rate = [&](uint32_t kind, double workPerIter, VkSampler s, float c, float lod, uint32_t dependent = 0,
+                    uint32_t startIters = 16) {
+      Push p{kind, startIters, 0, dependent, c, lod, 0.0173f, 0.0f};
       double t = 0.0, tq = 0.0;  // the runs at N and 2N: in the first round the last pair of the search for N
       if (rateAt == rateIters.size()) {
         // N grows until a run takes half of `target` and N iterations' work is at least half the run's fixed part
@@ -335,6 +347,26 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
     // an iteration): a division a step; a square root and an fadd (whose share is removed) a step.
     constexpr double kExSteps = 16.0;
     ops[model::kExDiv] = rate(kExDivK, kExSteps, nearest->handle(), 1.0001f, 0.0f);
+    {  // Code size: the division kernel written out 4x and 16x (the same divisions a step, each step in a module that many
+       // times the size) against the 1x module's rate just read: the slowdown rate(1x) / rate(Ux) at words(Ux), never
+       // below 1 (DeviceDesc codeWords, codeSlowdown; the shading modules are up to 14x the 1x module's 16K words). Each
+       // search for N starts at the 1x kernel's divisions per invocation (16 / U iterations). --quick leaves out the 16x
+       // module (SwiftShader takes ~20 s to create its pipeline).
+      const double w1 = double(kCalibrateCodeSizeModules[0].size());
+      d.codeWords = {w1}, d.codeSlowdown = {1.0};
+      out << "  code size " << w1 << " words: ex_div " << ops[model::kExDiv] / 1e6 << " M/s";
+      for (size_t m = 1; m < (opts.quick ? 2u : std::size(kCalibrateCodeSizeModules)); ++m) {
+        sized = kCalibrateCodeSizeModules[m];
+        const uint32_t u = kCalibrateCodeSizeUnroll[m];
+        const double r = rate(kExDivK, kExSteps * u, nearest->handle(), 1.0001f, 0.0f, 0, std::max(1u, 16u / u));
+        sized = {};
+        const double f = ops[model::kExDiv] / r;
+        d.codeWords.push_back(double(kCalibrateCodeSizeModules[m].size()));
+        d.codeSlowdown.push_back(std::max(1.0, f));
+        out << "; " << kCalibrateCodeSizeModules[m].size() << " words: " << r / 1e6 << " M/s (x " << f << ")";
+      }
+      out << "\n";
+    }
     {
       const double perStep = 1.0 / rate(kExSqrtK, kExSteps, nearest->handle(), 0.25f, 0.0f);
       ops[model::kExSqrt] = 1.0 / std::max(perStep - 1.0 / ops[model::kFAdd], perStep * 0.5);

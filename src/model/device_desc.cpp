@@ -53,7 +53,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second", "reread_bytes_per_second",
                 "dispatch_seconds", "first_dispatch_seconds", "compile_seconds_per_word", "workgroup_seconds", "raster", "texture_miss_seconds",
                 "texture_stream_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
-                "folds_specialization_constants", "value_numbering", "vertex_cache"},
+                "folds_specialization_constants", "value_numbering", "vertex_cache", "code_size"},
             path, "");
   DeviceDesc d;
   for (const char* k : {"device", "name", "provenance"})
@@ -124,6 +124,23 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
       fail(path, "'vertex_cache.batch_triangles' and 'vertex_cache.run_lanes' must be positive when entries is");
   }
   d.windowOps = positive(j, "window_ops", path, "");
+  {
+    const json& cs = j.at("code_size");
+    checkKeys(cs, {"words", "slowdown"}, path, "code_size.");
+    for (const char* k : {"words", "slowdown"})
+      if (!cs.at(k).is_array()) fail(path, std::string("'code_size.") + k + "' must be an array of numbers");
+    if (cs.at("words").size() != cs.at("slowdown").size())
+      fail(path, "'code_size.words' and 'code_size.slowdown' must have the same length");
+    for (size_t i = 0; i < cs.at("words").size(); ++i) {
+      const json &w = cs.at("words")[i], &s = cs.at("slowdown")[i];
+      if (!w.is_number() || !(w.get<double>() > (i ? d.codeWords.back() : 0.0)))
+        fail(path, "'code_size.words' must be positive and increasing, got " + w.dump() + " at " + std::to_string(i));
+      if (!s.is_number() || !(s.get<double>() >= 1.0))
+        fail(path, "'code_size.slowdown' must be numbers >= 1, got " + s.dump() + " at " + std::to_string(i));
+      d.codeWords.push_back(w.get<double>());
+      d.codeSlowdown.push_back(s.get<double>());
+    }
+  }
   return d;
 }
 
@@ -177,7 +194,8 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"folds_specialization_constants", d.foldsSpecConstants},
             {"value_numbering", d.valueNumbering},
             {"vertex_cache", {{"entries", d.vertexCache.entries}, {"batch_triangles", d.vertexCache.batchTriangles},
-                              {"run_lanes", d.vertexCache.runLanes}}}};
+                              {"run_lanes", d.vertexCache.runLanes}}},
+            {"code_size", {{"words", d.codeWords}, {"slowdown", d.codeSlowdown}}}};
   return j.dump(2) + "\n";
 }
 

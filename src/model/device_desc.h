@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace shadetwin::model {
 
@@ -119,6 +120,16 @@ struct DeviceDesc {
   // Per compute workgroup (64 invocations) beyond the work itself: calibrate's same fadd work in 4096 workgroups against
   // 64 (SwiftShader sets up each workgroup's invocations as coroutines: ~15 us; lavapipe ~0.1-0.5 us).
   double workgroupSeconds = 0.0;
+  // What a larger module costs per operation: a compute pass whose module has W SPIR-V words (PassCounts::moduleWords)
+  // runs its ALU time x the slowdown at W, read off measured points (codeWords[i], codeSlowdown[i]): 1 at or below the
+  // first (the size calibrate's rates were read at), linear in log2(W) between two points, the last point's beyond it.
+  // The device's machine code for a large module no longer fits the host's caches: probes (docs/RESULTS.md sessions 42,
+  // 43) ran the same exact division 1.2-2.1x slower on SwiftShader in a module of the MIS pass's size (219K words)
+  // than in calibrate's 16K-word one, and 10-15% faster on lavapipe. Software devices: calibrate's division kernel
+  // written out 1x, 4x and 16x (calibrate_exmath.comp FIXED_UNROLL), each point's slowdown its rate against the 1x
+  // rate, never below 1 (the unrolled kernel also runs fewer loop iterations per division: not a size effect). GPUs:
+  // no points (their instruction caches are unmeasured here).
+  std::vector<double> codeWords, codeSlowdown;
   // Per raster pipeline (calibrate: generated geometry through the shadow pass's and the G-buffer pass's pipelines).
   std::array<RasterRates, kRasterPipelines> raster{};
   VertexCacheDesc vertexCache{};

@@ -60,6 +60,16 @@ CoreModel coreModel(const DeviceDesc& d) {
   return m;
 }
 
+double codeSizeFactor(const DeviceDesc& d, uint64_t moduleWords) {
+  const std::vector<double>&w = d.codeWords, &s = d.codeSlowdown;
+  const double x = double(moduleWords);
+  if (w.empty() || x <= w.front()) return 1.0;
+  if (x >= w.back()) return s.back();
+  const size_t i = size_t(std::upper_bound(w.begin(), w.end(), x) - w.begin());  // w[i - 1] < x < w[i]
+  const double t = std::log2(x / w[i - 1]) / std::log2(w[i] / w[i - 1]);
+  return s[i - 1] + t * (s[i] - s[i - 1]);
+}
+
 Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   Prediction p;
   const auto ops = scalarOps(c);
@@ -74,6 +84,9 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   p.aluSeconds *= spread;
   // Scheduled on the device's core model: that time, over the busy cores (never below the issue-rate sum above).
   if (!d.unitsOverlap && c.scheduledSeconds > 0) p.aluSeconds = std::max(p.aluSeconds, c.scheduledSeconds / busy);
+  // The rates are those of calibrate's small modules: a larger module's machine code runs slower per operation.
+  p.codeFactor = codeSizeFactor(d, c.moduleWords);
+  p.aluSeconds *= p.codeFactor;
   p.textureSeconds = c.ops[opcount::kTexNearest] / d.lookupsPerSecond[kNearest] +
                      c.ops[opcount::kTexBilinear] / d.lookupsPerSecond[kBilinear] +
                      c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear] +

@@ -10,6 +10,7 @@ namespace shadetwin::model {
 
 struct Prediction {
   double aluSeconds = 0, textureSeconds = 0, memorySeconds = 0, rasterSeconds = 0, launchSeconds = 0;
+  double codeFactor = 1;  // the ALU time's factor for the pass's module size (codeSizeFactor), in aluSeconds
   double seconds = 0;   // sum of the terms (software devices) or the largest plus launch (GPUs); launch = dispatches x cost
   std::string bound;    // alu, texture, memory, raster or launch: the largest term
 };
@@ -21,5 +22,8 @@ std::array<double, kOpClasses> scalarOps(const PassCounts& c);
 /// and stays throughput-bound (the model is off).
 CoreModel coreModel(const DeviceDesc& d);
 Prediction predict(const PassCounts& c, const DeviceDesc& d);
+/// The ALU time's factor for a module of `moduleWords` SPIR-V words: d's measured points (codeWords, codeSlowdown),
+/// linear in log2 of the size between two, 1 at or below the first, the last one's beyond it.
+double codeSizeFactor(const DeviceDesc& d, uint64_t moduleWords);
 
 }  // namespace shadetwin::model

@@ -23,6 +23,8 @@
 #include "paraboloid_resample_comp.inc"
 #include "sh_project_comp.inc"
 #include "sh_reduce_comp.inc"
+#include "visibility_filter_comp.inc"
+#include "visibility_fit_comp.inc"
 
 namespace shadetwin::model {
 namespace {
@@ -50,6 +52,12 @@ template <size_t N>
 void addPipeline(PassCounts& c, const uint32_t (&module)[N]) {
   ++c.pipelines;
   c.pipelineWords += N;
+  c.moduleWords = std::max<uint64_t>(c.moduleWords, N);
+}
+// A module the pass runs whose pipeline was made before the frame (the visibility passes'): its size only.
+template <size_t N>
+void runsModule(PassCounts& c, const uint32_t (&)[N]) {
+  c.moduleWords = std::max<uint64_t>(c.moduleWords, N);
 }
 
 void addRaster(PassCounts& c, const emu::RasterStats& r) {
@@ -87,6 +95,7 @@ std::vector<std::vector<float>> countMips(PassCounts& c, const std::vector<float
 void accumulate(PassCounts& into, const PassCounts& c) {
   for (int k = 0; k < opcount::kKinds; ++k) into.ops[size_t(k)] += c.ops[size_t(k)];
   into.invocations += c.invocations, into.dispatches += c.dispatches, into.pipelines += c.pipelines, into.pipelineWords += c.pipelineWords;
+  into.moduleWords = std::max(into.moduleWords, c.moduleWords);
   into.workgroups += c.workgroups;
   into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.bytesReread += c.bytesReread, into.rasterBytes += c.rasterBytes, into.scheduledSeconds += c.scheduledSeconds;
   into.blocks += c.blocks, into.partialBlocks += c.partialBlocks;
@@ -262,6 +271,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     const uint64_t pixels = uint64_t(g.width) * g.height;
     PassCounts fp;
     fp.pass = "visibility-fit";
+    runsModule(fp, kSpv_visibility_fit_comp);
     VisibilityImage fit;
     addTicks(fp, countedTicks([&] { fit = visibilityFitCounted(g, maps, v, dev); }, core, &fp.scheduledSeconds), 8);
     const VisibilityImage fitE = visibilityFitEmu(g, maps, v, dev);
@@ -272,6 +282,7 @@ FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::D
     if (v.settings.filterRadius) {
       PassCounts fl;
       fl.pass = "visibility-filter";
+      runsModule(fl, kSpv_visibility_filter_comp);
       VisibilityImage filt;
       addTicks(fl, countedTicks([&] { filt = visibilityFilterCounted(g, fitE, v, dev); }, core, &fl.scheduledSeconds), 8);
       const VisibilityImage filtE = visibilityFilterEmu(g, fitE, v, dev);

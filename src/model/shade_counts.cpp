@@ -12,6 +12,7 @@
 #include "inputs/env_sampling.h"
 #include "inputs/material.h"
 #include "lanes/instantiate.h"
+#include "passes/passes_vk.h"
 #include "passes/visibility.h"
 
 #include "model/counted.h"
@@ -38,6 +39,7 @@ PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInput
   std::vector<float> image;
   PassCounts c;
   c.pass = "shade";
+  c.moduleWords = shadeModuleWords(scene.technique);
   opcount::sceneBrdfKinds = brdfKindsOf(materialRecords(scene, true));  // the pipeline's specialization constant
   // Value numbering (a device whose compiler computes a repeated expression once: DeviceDesc value_numbering) is
   // applied where the counted driver marks its invocations: the shading pass, whose shared source repeats the most (a

@@ -64,6 +64,8 @@ VkSamplerCreateInfo environmentSamplerInfo(bool repeatU);
 /// one-level 2D image, and its sampler (nearest: no filtering is involved).
 std::unique_ptr<vk::Image> dataTextureImage(vk::Context& ctx, const emu::Texture& t);
 VkSamplerCreateInfo dataTextureSamplerInfo();
+/// The SPIR-V words of the module ShadePassVk runs for `technique` (the performance model's code-size term).
+size_t shadeModuleWords(const std::string& technique);
 
 class ShadePassVk {
  public:

@@ -53,6 +53,11 @@ KernelInfo kernelInfo(const std::string& technique) {
   return {kSpv_shade_mirror_comp, 4, offsetof(ShadePush, levelConstant), false, true};
 }
 
+}  // namespace
+
+size_t shadeModuleWords(const std::string& technique) { return kernelInfo(technique).spirv.size(); }
+
+namespace {
 VkSamplerCreateInfo materialMapSamplerInfo() {
   VkSamplerCreateInfo si = environmentSamplerInfo(true);
   si.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;

@@ -11,6 +11,9 @@
 //   KIND 1 ex_sqrt  x = exSqrt(x) + c  x stays in [1, 3) (c = 0.25: the fixed point of sqrt(x) + c is ~1.6)
 // Each iteration runs 16 steps: 8 independent chains of 2 (the issue rate) or, DEPENDENT, one chain of 16 (the
 // latency). The kernels exist in the module as the shading code has them: inlined, straight-line.
+// FIXED_UNROLL (1, 2, 4, 8 or 16; the independent division kernel only): the iteration's 16 steps written out that many times,
+// the same work per step in a module that many times the size, so calibrate reads what a larger module costs the device
+// per operation (the model's code-size term, model/device_desc.h codeSlowdownPerDoubling).
 #extension GL_GOOGLE_include_directive : require
 #include "shade/prelude.h"
 #include "shade/exact_math.h"
@@ -31,12 +34,28 @@ layout(push_constant) uniform Push { uint kind, iters, count, pad; float c, lod,
 #define DIV2(k) x##k = exDiv(y##k, x##k); y##k = exDiv(x##k, y##k);
 #define SQRT2(k) x##k = exSqrt(x##k) + pc.c; x##k = exSqrt(x##k) + pc.c;
 #define SUM_X(k) acc += x##k + y##k;
+#ifndef FIXED_UNROLL
+#define FIXED_UNROLL 1
+#endif
+#if FIXED_UNROLL == 1
+#define BODY(X) X
+#elif FIXED_UNROLL == 2
+#define BODY(X) X X
+#elif FIXED_UNROLL == 4
+#define BODY(X) X X X X
+#elif FIXED_UNROLL == 8
+#define BODY(X) X X X X X X X X
+#elif FIXED_UNROLL == 16
+#define BODY(X) X X X X X X X X X X X X X X X X
+#else
+#error FIXED_UNROLL must be 1, 2, 4, 8 or 16
+#endif
 // Two steps of chain k per STEP2(k): of all eight chains (8 independent chains) or of chain 0 eight times (one chain).
 #define LOOP(STEP2)                                                            \
   if (DEPENDENT) {                                                             \
     for (uint n = 0u; n < pc.iters; ++n) { ONE8(STEP2) }                       \
   } else {                                                                     \
-    for (uint n = 0u; n < pc.iters; ++n) { ALL8(STEP2) }                       \
+    for (uint n = 0u; n < pc.iters; ++n) { BODY(ALL8(STEP2)) }                       \
   }
 
 void main() {
