@@ -87,17 +87,17 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
   // other kinds' code is not in it). Specialization constants: 0 is the exact-math module's prelude constant (~0u);
   // 1 is kind 13's DEPENDENT (pad = 1 asks for the dependent chain; the other modules have none, and ignore it).
   std::unique_ptr<vk::Kernel> kernels[2][kFetchK + 1];
-  // The division kernel's larger modules (the code-size term): while `sized` is set, the kernel runs from that one.
-  std::span<const uint32_t> sized{};
+  // The division kernel's larger modules (the code-size term): while `sized` is not 0, the kernel runs from
+  // kCalibrateCodeSizeModules[sized].
+  size_t sized = 0;
   std::unique_ptr<vk::Kernel> sizedKernels[std::size(kCalibrateCodeSizeModules)];
   auto kernel = [&](uint32_t kind, uint32_t dependent) -> vk::Kernel& {
-    for (size_t m = 0; !sized.empty() && m < std::size(kCalibrateCodeSizeModules); ++m) {
-      if (sized.data() != kCalibrateCodeSizeModules[m].data()) continue;
+    if (sized) {
       const uint32_t spec[] = {~0u, 0u};
-      if (!sizedKernels[m])
-        sizedKernels[m] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, sized, layout, sizeof(Push),
-                                                       std::span<const uint32_t>{}, std::span<const uint32_t>(spec));
-      return *sizedKernels[m];
+      if (!sizedKernels[sized])
+        sizedKernels[sized] = std::make_unique<vk::Kernel>(ctx, vk::Stage::Compute, kCalibrateCodeSizeModules[sized], layout,
+                                                           sizeof(Push), std::span<const uint32_t>{}, std::span<const uint32_t>(spec));
+      return *sizedKernels[sized];
     }
     if (!kernels[dependent][kind]) {
       const std::span<const uint32_t> module = kCalibrateModules[dependent][kind];
@@ -356,10 +356,10 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
       d.codeWords = {w1}, d.codeSlowdown = {1.0};
       out << "  code size " << w1 << " words: ex_div " << ops[model::kExDiv] / 1e6 << " M/s";
       for (size_t m = 1; m < (opts.quick ? 2u : std::size(kCalibrateCodeSizeModules)); ++m) {
-        sized = kCalibrateCodeSizeModules[m];
+        sized = m;
         const uint32_t u = kCalibrateCodeSizeUnroll[m];
         const double r = rate(kExDivK, kExSteps * u, nearest->handle(), 1.0001f, 0.0f, 0, std::max(1u, 16u / u));
-        sized = {};
+        sized = 0;
         const double f = ops[model::kExDiv] / r;
         d.codeWords.push_back(double(kCalibrateCodeSizeModules[m].size()));
         d.codeSlowdown.push_back(std::max(1.0, f));

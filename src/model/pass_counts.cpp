@@ -46,18 +46,18 @@ struct Checker {
   }
 };
 
+// A module the pass runs (its size: the code-size term); the visibility passes' pipelines are made before the frame.
+template <size_t N>
+void runsModule(PassCounts& c, const uint32_t (&)[N]) {
+  c.moduleWords = std::max<uint64_t>(c.moduleWords, N);
+}
 // A pipeline the pass creates and first dispatches (the Vulkan build makes the technique inputs' pipelines when it builds
 // them): its first dispatch compiles `module`, so the pass counts the module's size with it.
 template <size_t N>
 void addPipeline(PassCounts& c, const uint32_t (&module)[N]) {
   ++c.pipelines;
   c.pipelineWords += N;
-  c.moduleWords = std::max<uint64_t>(c.moduleWords, N);
-}
-// A module the pass runs whose pipeline was made before the frame (the visibility passes'): its size only.
-template <size_t N>
-void runsModule(PassCounts& c, const uint32_t (&)[N]) {
-  c.moduleWords = std::max<uint64_t>(c.moduleWords, N);
+  runsModule(c, module);
 }
 
 void addRaster(PassCounts& c, const emu::RasterStats& r) {

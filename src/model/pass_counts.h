@@ -29,7 +29,7 @@ struct PassCounts {
   uint64_t pipelines = 0;     // pipelines created for the pass and first dispatched in it (the technique inputs)
   uint64_t pipelineWords = 0; // the SPIR-V words of those pipelines' modules (a first dispatch compiles them)
   // compute passes: the SPIR-V words of the module its invocations run (the largest, where it runs several), for the
-  // model's code-size term (DeviceDesc codeSlowdownPerDoubling); raster passes: 0 (their rates hold their shaders)
+  // model's code-size term (DeviceDesc codeWords, codeSlowdown); raster passes: 0 (their rates hold their shaders)
   uint64_t moduleWords = 0;
   uint64_t workgroups = 0;    // compute workgroups dispatched (0: one per 64 invocations; raster passes have none)
   uint64_t bytesRead = 0, bytesWritten = 0;  // buffer traffic (texture reads are in the lookups)

@@ -13,7 +13,7 @@
 // latency). The kernels exist in the module as the shading code has them: inlined, straight-line.
 // FIXED_UNROLL (1, 2, 4, 8 or 16; the independent division kernel only): the iteration's 16 steps written out that many times,
 // the same work per step in a module that many times the size, so calibrate reads what a larger module costs the device
-// per operation (the model's code-size term, model/device_desc.h codeSlowdownPerDoubling).
+// per operation (the model's code-size term, model/device_desc.h codeWords, codeSlowdown).
 #extension GL_GOOGLE_include_directive : require
 #include "shade/prelude.h"
 #include "shade/exact_math.h"
@@ -55,7 +55,7 @@ layout(push_constant) uniform Push { uint kind, iters, count, pad; float c, lod,
   if (DEPENDENT) {                                                             \
     for (uint n = 0u; n < pc.iters; ++n) { ONE8(STEP2) }                       \
   } else {                                                                     \
-    for (uint n = 0u; n < pc.iters; ++n) { BODY(ALL8(STEP2)) }                       \
+    for (uint n = 0u; n < pc.iters; ++n) { BODY(ALL8(STEP2)) }                 \
   }
 
 void main() {
