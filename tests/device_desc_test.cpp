@@ -87,6 +87,8 @@ TEST(DeviceDesc, RoundTripIsLossless) {
   EXPECT_EQ(e.rereadBytesPerSecond, d.rereadBytesPerSecond);
   EXPECT_EQ(e.codeWords, d.codeWords);
   EXPECT_EQ(e.codeSlowdown, d.codeSlowdown);
+  EXPECT_EQ(e.loopStateValues, d.loopStateValues);
+  EXPECT_EQ(e.loopStateSeconds, d.loopStateSeconds);
   for (int r = 0; r < shadetwin::model::kRasterPipelines; ++r) {
     EXPECT_EQ(e.raster[size_t(r)].trianglesPerSecond, d.raster[size_t(r)].trianglesPerSecond);
     EXPECT_EQ(e.raster[size_t(r)].fragmentsPerSecond, d.raster[size_t(r)].fragmentsPerSecond);
@@ -149,6 +151,23 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
     ASSERT_NE(at, std::string::npos);
     s.erase(at, empty.size() + 4);  // the key, its value, the comma and the newline
     EXPECT_NE(errorOf(s).find("missing key 'code_size'"), std::string::npos) << errorOf(s);
+  }
+  // The loop-state term (session 44): a baseline and a price, neither negative; a file written before it is refused.
+  {
+    const std::string zero = "\"loop_state\": {\n    \"seconds_per_value\": 0.0,\n    \"values\": 0.0\n  }";
+    auto with = [&](const std::string& seconds, const std::string& values) {
+      return errorOf(replaced(zero, "\"loop_state\": {\"seconds_per_value\": " + seconds + ", \"values\": " + values + "}"));
+    };
+    EXPECT_EQ(with("2.4e-10", "10"), "");
+    EXPECT_NE(with("-1e-10", "10").find("'loop_state.seconds_per_value' must be a number >= 0"), std::string::npos);
+    EXPECT_NE(with("1e-10", "\"ten\"").find("'loop_state.values' must be a number >= 0"), std::string::npos);
+    EXPECT_NE(errorOf(replaced(zero, "\"loop_state\": {\"values\": 10}")).find("missing key 'loop_state.seconds_per_value'"),
+              std::string::npos);
+    std::string s = good;
+    const size_t at = s.find("  " + zero);
+    ASSERT_NE(at, std::string::npos);
+    s.erase(at, zero.size() + 4);
+    EXPECT_NE(errorOf(s).find("missing key 'loop_state'"), std::string::npos) << errorOf(s);
   }
   EXPECT_NE(errorOf(replaced("\"workgroup_seconds\": 0.0", "\"workgroup_seconds\": null")).find("'workgroup_seconds' must be a number >= 0"),
             std::string::npos);

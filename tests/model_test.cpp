@@ -289,6 +289,40 @@ TEST(Model, ALargerModuleRunsItsAluTimeAtTheMeasuredSlowdown) {
   }
 }
 
+// The loop-state term: per loop depth, the invocation-iterations (8-lane ticks x 8) times the values its module's loops
+// of that depth carry beyond the device's baseline, at the device's price per value; added to the ALU term after the
+// code-size factor, shared over the busy cores like the rest of it, nothing at or below the baseline or on a device
+// whose price is 0 (the GPUs).
+TEST(Model, ALoopCarryingMoreValuesThanTheBaselinePaysEachIterationForTheRest) {
+  PassCounts c;
+  std::array<uint64_t, opcount::kKinds> t{};
+  t[opcount::kFMul] = 100, t[opcount::kLoop1] = 10, t[opcount::kLoop2] = 40, t[opcount::kLoop3] = 7;
+  addTicks(c, t, 8);
+  EXPECT_EQ(c.ops[opcount::kLoop1], 80.0);  // iterations are per lane, like operations
+  EXPECT_EQ(scalarOps(c)[kFMul], 800.0);    // and are no operation of any class
+  c.workgroups = 4;
+  DeviceDesc d = device(false);
+  d.cores = 2;
+  const Prediction off = predict(c, d);
+  EXPECT_EQ(off.loopStateSeconds, 0.0);
+  c.loopCarried = {49, 12, 30};
+  EXPECT_EQ(predict(c, d).aluSeconds, off.aluSeconds);  // price 0: nothing, whatever the loops carry
+  d.loopStateValues = 10, d.loopStateSeconds = 2e-10;
+  const double expected = (80.0 * 39 + 320.0 * 2 + 56.0 * 20) * 2e-10;
+  EXPECT_DOUBLE_EQ(loopStateSeconds(c, d), expected);
+  const Prediction p = predict(c, d);
+  EXPECT_DOUBLE_EQ(p.loopStateSeconds, expected);
+  EXPECT_DOUBLE_EQ(p.aluSeconds, off.aluSeconds + expected);
+  EXPECT_DOUBLE_EQ(p.seconds, off.seconds + expected);
+  c.workgroups = 1;  // one workgroup runs on one of the two cores: its iterations at one core's share
+  EXPECT_DOUBLE_EQ(predict(c, d).loopStateSeconds, 2.0 * expected);
+  c.workgroups = 4;
+  d.codeWords = {1000, 2000}, d.codeSlowdown = {1.0, 2.0}, c.moduleWords = 2000;  // the factor is not applied to it
+  EXPECT_DOUBLE_EQ(predict(c, d).aluSeconds, 2.0 * off.aluSeconds + expected);
+  c.loopCarried = {10, 9, 0};  // at or below the baseline: nothing
+  EXPECT_EQ(loopStateSeconds(c, d), 0.0);
+}
+
 // The portable routines are straight-line: one vector's operations by kind, the same for any operands, and every kind
 // an ALU kind (no texture, no private array, no nested exact operation).
 TEST(Model, ExactMathMixIsTheRoutinesStraightLineOperations) {

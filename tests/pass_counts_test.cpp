@@ -74,6 +74,9 @@ TEST_P(PassCountsCoverage, EveryPassTheFrameRunsIsCountedWithTheEmulatorsBits) {
       // Compute passes name the size of the module they run (the code-size term); raster passes none.
       EXPECT_EQ(p.moduleWords > 0, p.triangles == 0) << p.pass;
       EXPECT_GE(p.moduleWords, p.pipelines ? p.pipelineWords / p.pipelines : 0) << p.pass;
+      // A pass whose counted run iterated a loop runs a module with a loop at that depth (the loop-state term's values).
+      for (int d = 0; d < 3; ++d)
+        if (p.ops[size_t(opcount::kLoop1 + d)] > 0.0) EXPECT_GT(p.loopCarried[size_t(d)], 0u) << p.pass << " depth " << d + 1;
     }
     EXPECT_EQ(ran, counted) << GetParam().scene << " " << scene.technique << " on " << dev->name;
     EXPECT_TRUE(f.differing.empty()) << f.differing.front();
@@ -125,6 +128,28 @@ TEST(PassCounts, RasterAndComputeShapes) {
     // The technique inputs' pipelines are made when the inputs are built: their first dispatch is in the pass.
     if (p.pass == "paraboloid" || p.pass == "sh-project" || p.pass == "sh-reduce") {
       EXPECT_EQ(p.pipelines, 1u) << p.pass;
+    }
+    // The loop-state term's inputs: the dialect's FOR iterations by depth and the module's carried values. sh_project.comp
+    // loops over the row's texels (every invocation, the tail's too, one row), carrying 16 RGB coefficients and the
+    // column; the fit loops over the K maps; the filter's dx loop runs inside its dy loop.
+    if (p.pass == "sh-project") {
+      EXPECT_EQ(p.ops[opcount::kLoop1], double(p.invocations) * env.texture->width());
+      EXPECT_EQ(p.ops[opcount::kLoop2], 0.0);
+      EXPECT_EQ(p.loopCarried, (std::array<uint32_t, 3>{49, 0, 0}));
+    }
+    if (p.pass == "visibility-fit") {
+      EXPECT_EQ(p.ops[opcount::kLoop1], double(p.invocations) * scene.visMaps);
+      EXPECT_GT(p.loopCarried[0], 0u);
+    }
+    if (p.pass == "visibility-filter") {
+      const double side = 2.0 * scene.visFilterRadius + 1.0;
+      EXPECT_EQ(p.ops[opcount::kLoop1], double(p.invocations) * side);
+      EXPECT_EQ(p.ops[opcount::kLoop2], double(p.invocations) * side * side);
+      EXPECT_GT(p.loopCarried[1], 0u);
+    }
+    if (p.pass == "gbuffer" || p.pass == "shadow" || p.pass == "paraboloid") {
+      EXPECT_EQ(p.ops[opcount::kLoop1] + p.ops[opcount::kLoop2] + p.ops[opcount::kLoop3], 0.0) << p.pass;
+      EXPECT_EQ(p.loopCarried, (std::array<uint32_t, 3>{})) << p.pass;
     }
     if (p.pass == "sh-reduce") {  // sh_reduce.comp: one workgroup of 16; the tree's reads and in-place writes
       const uint64_t rows = env.texture->height();

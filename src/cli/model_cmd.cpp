@@ -114,8 +114,9 @@ std::map<std::string, double> measureFrame(vk::Context& ctx, const Scene& scene,
 struct Row {
   std::string scene, technique, device, pass, bound;
   double predictedMs = 0, measuredMs = -1;
-  double aluMs = 0, codeFactor = 1;  // the prediction's ALU term (code-size factor included) and that factor
+  double aluMs = 0, codeFactor = 1;  // the prediction's ALU term (code-size factor, loop state included) and that factor
   uint64_t moduleWords = 0;
+  double loopStateMs = 0;  // the loop-state term (in aluMs)
 };
 
 // One frame of `scene` modelled on `desc` (and measured on `ctx` when given); returns the rows, false in `same` when a
@@ -135,13 +136,17 @@ std::vector<Row> modelFrame(const Scene& scene, const std::string& sceneName, co
     const model::Prediction p = model::predict(c, desc);
     const auto ops = model::scalarOps(c);
     const double inv = std::max(1.0, double(c.invocations));
-    Row r{sceneName, scene.technique, desc.device, c.pass, p.bound, p.seconds * 1e3, -1.0, p.aluSeconds * 1e3, p.codeFactor, c.moduleWords};
+    Row r{sceneName, scene.technique, desc.device, c.pass, p.bound, p.seconds * 1e3, -1.0, p.aluSeconds * 1e3, p.codeFactor, c.moduleWords,
+          p.loopStateSeconds * 1e3};
     log << std::fixed << std::setprecision(2) << "  " << std::left << std::setw(18) << c.pass << std::right << " predicted "
         << std::setw(9) << r.predictedMs << " ms (alu " << p.aluSeconds * 1e3 << ", texture " << p.textureSeconds * 1e3
         << ", memory " << p.memorySeconds * 1e3 << ", raster " << p.rasterSeconds * 1e3 << ", launch " << p.launchSeconds * 1e3
         << "; bound " << p.bound << ")";
     if (p.codeFactor != 1.0)
       log << " (alu x " << std::setprecision(3) << p.codeFactor << " for a module of " << c.moduleWords << " words)" << std::setprecision(2);
+    if (p.loopStateSeconds > 0.0)
+      log << " (alu + " << std::setprecision(3) << p.loopStateSeconds * 1e3 << " ms for loops carrying " << c.loopCarried[0] << "/"
+          << c.loopCarried[1] << "/" << c.loopCarried[2] << " values at depth 1/2/3)" << std::setprecision(2);
     if (auto it = measured.find(c.pass); it != measured.end()) {
       r.measuredMs = it->second;
       log << "  measured " << std::setw(9) << r.measuredMs << " ms  error " << std::showpos << std::setprecision(1)
@@ -286,11 +291,11 @@ int modelCommand(const ModelOptions& opts, std::ostream& log) {
   if (!opts.csv.empty()) {
     OutputFile file(opts.csv);
     std::ostream& f = file.stream();
-    f << "scene,technique,device,pass,bound,predicted_ms,measured_ms,error_pct,alu_ms,module_words,code_factor\n";
+    f << "scene,technique,device,pass,bound,predicted_ms,measured_ms,error_pct,alu_ms,module_words,code_factor,loop_state_ms\n";
     for (const Row& r : all)
       f << r.scene << "," << r.technique << "," << r.device << "," << r.pass << "," << r.bound << "," << r.predictedMs << ","
         << r.measuredMs << "," << (r.measuredMs > 0 ? 100.0 * (r.predictedMs - r.measuredMs) / r.measuredMs : 0.0) << ","
-        << r.aluMs << "," << r.moduleWords << "," << r.codeFactor << "\n";
+        << r.aluMs << "," << r.moduleWords << "," << r.codeFactor << "," << r.loopStateMs << "\n";
     file.commit();
     log << "wrote " << opts.csv << "\n";
   }

@@ -53,7 +53,7 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
                 "lookups_per_second", "cache_line_bytes", "cache_bytes", "bandwidth_bytes_per_second", "reread_bytes_per_second",
                 "dispatch_seconds", "first_dispatch_seconds", "compile_seconds_per_word", "workgroup_seconds", "raster", "texture_miss_seconds",
                 "texture_stream_seconds", "units_overlap", "latency_seconds", "window_ops", "executes_every_block",
-                "folds_specialization_constants", "value_numbering", "vertex_cache", "code_size"},
+                "folds_specialization_constants", "value_numbering", "vertex_cache", "code_size", "loop_state"},
             path, "");
   DeviceDesc d;
   for (const char* k : {"device", "name", "provenance"})
@@ -141,6 +141,12 @@ DeviceDesc parseDeviceDesc(const std::string& text, const std::string& path) {
       d.codeSlowdown.push_back(s.get<double>());
     }
   }
+  {
+    const json& ls = j.at("loop_state");
+    checkKeys(ls, {"values", "seconds_per_value"}, path, "loop_state.");
+    d.loopStateValues = nonNegative(ls, "values", path, "loop_state.");
+    d.loopStateSeconds = nonNegative(ls, "seconds_per_value", path, "loop_state.");
+  }
   return d;
 }
 
@@ -195,7 +201,8 @@ std::string deviceDescJson(const DeviceDesc& d) {
             {"value_numbering", d.valueNumbering},
             {"vertex_cache", {{"entries", d.vertexCache.entries}, {"batch_triangles", d.vertexCache.batchTriangles},
                               {"run_lanes", d.vertexCache.runLanes}}},
-            {"code_size", {{"words", d.codeWords}, {"slowdown", d.codeSlowdown}}}};
+            {"code_size", {{"words", d.codeWords}, {"slowdown", d.codeSlowdown}}},
+            {"loop_state", {{"values", d.loopStateValues}, {"seconds_per_value", d.loopStateSeconds}}}};
   return j.dump(2) + "\n";
 }
 

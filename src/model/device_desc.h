@@ -130,6 +130,14 @@ struct DeviceDesc {
   // rate, never below 1 (the unrolled kernel also runs fewer loop iterations per division: not a size effect). GPUs:
   // no points (their instruction caches are unmeasured here).
   std::vector<double> codeWords, codeSlowdown;
+  // What a value a loop carries from one iteration to the next costs beyond the first loopStateValues (model/
+  // spirv_loops.h): loopStateSeconds per extra value per invocation and iteration, device-wide like the rates (a pass
+  // runs its invocations on every core). A software device's compiler keeps so many values in the host's registers;
+  // the rest are spilled and reloaded each iteration. Software devices: calibrate's carried-state kernels, 128
+  // multiply-adds an iteration into 8 and into 64 accumulators (calibrate_carried.comp): the baseline is the 8-value
+  // kernel's carried values, the price per value the difference of the two per iteration over the difference of their
+  // carried values. GPUs: 0 (hundreds of registers a thread; the public figures hold no spill cost).
+  double loopStateValues = 0.0, loopStateSeconds = 0.0;
   // Per raster pipeline (calibrate: generated geometry through the shadow pass's and the G-buffer pass's pipelines).
   std::array<RasterRates, kRasterPipelines> raster{};
   VertexCacheDesc vertexCache{};

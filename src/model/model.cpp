@@ -1,4 +1,5 @@
 #include "model/model.h"
+#include "model/spirv_loops.h"
 
 #include <algorithm>
 #include <cmath>
@@ -70,6 +71,13 @@ double codeSizeFactor(const DeviceDesc& d, uint64_t moduleWords) {
   return s[i - 1] + t * (s[i] - s[i - 1]);
 }
 
+double loopStateSeconds(const PassCounts& c, const DeviceDesc& d) {
+  double s = 0.0;
+  for (int k = 0; k < kLoopDepths; ++k)
+    s += c.ops[size_t(opcount::kLoop1 + k)] * std::max(0.0, double(c.loopCarried[size_t(k)]) - d.loopStateValues);
+  return s * d.loopStateSeconds;
+}
+
 Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   Prediction p;
   const auto ops = scalarOps(c);
@@ -87,6 +95,8 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d) {
   // The rates are those of calibrate's small modules: a larger module's machine code runs slower per operation.
   p.codeFactor = codeSizeFactor(d, c.moduleWords);
   p.aluSeconds *= p.codeFactor;
+  p.loopStateSeconds = loopStateSeconds(c, d) * spread;
+  p.aluSeconds += p.loopStateSeconds;
   p.textureSeconds = c.ops[opcount::kTexNearest] / d.lookupsPerSecond[kNearest] +
                      c.ops[opcount::kTexBilinear] / d.lookupsPerSecond[kBilinear] +
                      c.ops[opcount::kTexTrilinear] / d.lookupsPerSecond[kTrilinear] +

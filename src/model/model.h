@@ -11,6 +11,7 @@ namespace shadetwin::model {
 struct Prediction {
   double aluSeconds = 0, textureSeconds = 0, memorySeconds = 0, rasterSeconds = 0, launchSeconds = 0;
   double codeFactor = 1;  // the ALU time's factor for the pass's module size (codeSizeFactor), in aluSeconds
+  double loopStateSeconds = 0;  // what its loops' carried values beyond the device's baseline cost (in aluSeconds)
   double seconds = 0;   // sum of the terms (software devices) or the largest plus launch (GPUs); launch = dispatches x cost
   std::string bound;    // alu, texture, memory, raster or launch: the largest term
 };
@@ -25,5 +26,8 @@ Prediction predict(const PassCounts& c, const DeviceDesc& d);
 /// The ALU time's factor for a module of `moduleWords` SPIR-V words: d's measured points (codeWords, codeSlowdown),
 /// linear in log2 of the size between two, 1 at or below the first, the last one's beyond it.
 double codeSizeFactor(const DeviceDesc& d, uint64_t moduleWords);
+/// The loop-state term before the busy-core share: per loop depth, the pass's invocation-iterations x the values its
+/// module's loops of that depth carry beyond d.loopStateValues x d.loopStateSeconds.
+double loopStateSeconds(const PassCounts& c, const DeviceDesc& d);
 
 }  // namespace shadetwin::model

@@ -31,12 +31,13 @@ namespace opcount {
 enum Kind {
   kFAdd, kFMul, kFCmp, kIAlu, kIMul, kCvt, kSel, kMaskOp, kShift, kICmp, kISel, kPrivRead, kPrivWrite, kExDiv, kExSqrt,
   kTexLookup, kTexel, kTexNearest, kTexBilinear, kTexTrilinear, kTexUniform, kTexFetch, kTexLine, kTexMiss, kTexStreamMiss,
+  kLoop1, kLoop2, kLoop3,  // iterations of the dialect's FOR loops at nesting depth 1, 2 and 3 or deeper (per vector)
   kKinds
 };
 inline const char* kKindNames[kKinds] = {"fadd", "fmul", "fcmp", "ialu", "imul", "cvt", "select", "mask", "shift", "icmp", "iselect",
                                           "private_read", "private_write", "ex_div", "ex_sqrt", "tex_lookup", "texel",
                                           "tex_nearest", "tex_bilinear", "tex_trilinear", "tex_uniform", "tex_fetch", "tex_line",
-                                          "tex_miss", "tex_stream_miss"};
+                                          "tex_miss", "tex_stream_miss", "loop1", "loop2", "loop3"};
 inline thread_local std::array<uint64_t, kKinds> counts{};
 inline void tick(Kind k, uint64_t n = 1) { counts[size_t(k)] += n; }
 
@@ -372,9 +373,11 @@ struct F {
 };
 
 template <int N> inline LoopScope loopScope(F<N>) { return {}; }
-// Each iteration of the dialect's FOR: what it computes is its own (value numbering: no LICM).
+// Each iteration of the dialect's FOR: what it computes is its own (value numbering: no LICM). Counted by its depth
+// (the model's loop-state term: model/spirv_loops.h), unless inside a loop of an untaken block (the device skips it).
 template <int N> inline void loopIteration(F<N>) {
   if (loopDepth >= 0 && loopDepth < 64) loopEpoch[size_t(loopDepth)] = epochNext++;
+  if (loopDepth >= 1 && counting()) tick(Kind(kLoop1 + std::min(loopDepth, 3) - 1));
 }
 // The dialect's specMask (shade/prelude.h): a uniform mask from a specialization constant.
 template <int N> inline M<N> specConstantMask(F<N>, bool b) {

@@ -12,6 +12,7 @@
 #include "inputs/sh_irradiance.h"
 #include "inputs/shade_inputs.h"
 #include "inputs/visibility.h"
+#include "model/spirv_loops.h"
 #include "model/vertex_cache.h"
 #include "passes/gbuffer.h"
 #include "passes/mips.h"
@@ -46,10 +47,13 @@ struct Checker {
   }
 };
 
-// A module the pass runs (its size: the code-size term); the visibility passes' pipelines are made before the frame.
+// A module the pass runs (its size: the code-size term; its loops' carried values: the loop-state term); the visibility
+// passes' pipelines are made before the frame.
 template <size_t N>
-void runsModule(PassCounts& c, const uint32_t (&)[N]) {
+void runsModule(PassCounts& c, const uint32_t (&module)[N]) {
   c.moduleWords = std::max<uint64_t>(c.moduleWords, N);
+  const std::vector<uint32_t> carried = carriedByDepth(module);
+  for (int d = 0; d < kLoopDepths; ++d) c.loopCarried[size_t(d)] = std::max(c.loopCarried[size_t(d)], carried[size_t(d)]);
 }
 // A pipeline the pass creates and first dispatches (the Vulkan build makes the technique inputs' pipelines when it builds
 // them): its first dispatch compiles `module`, so the pass counts the module's size with it.
@@ -96,6 +100,7 @@ void accumulate(PassCounts& into, const PassCounts& c) {
   for (int k = 0; k < opcount::kKinds; ++k) into.ops[size_t(k)] += c.ops[size_t(k)];
   into.invocations += c.invocations, into.dispatches += c.dispatches, into.pipelines += c.pipelines, into.pipelineWords += c.pipelineWords;
   into.moduleWords = std::max(into.moduleWords, c.moduleWords);
+  for (int d = 0; d < kLoopDepths; ++d) into.loopCarried[size_t(d)] = std::max(into.loopCarried[size_t(d)], c.loopCarried[size_t(d)]);
   into.workgroups += c.workgroups;
   into.bytesRead += c.bytesRead, into.bytesWritten += c.bytesWritten, into.bytesReread += c.bytesReread, into.rasterBytes += c.rasterBytes, into.scheduledSeconds += c.scheduledSeconds;
   into.blocks += c.blocks, into.partialBlocks += c.partialBlocks;
@@ -132,7 +137,7 @@ std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& 
 
 void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks, double lanes) {
   for (int k = 0; k < opcount::kKinds; ++k)
-    c.ops[size_t(k)] += double(ticks[size_t(k)]) * (k < opcount::kTexLookup ? lanes : 1.0);
+    c.ops[size_t(k)] += double(ticks[size_t(k)]) * (k < opcount::kTexLookup || k >= opcount::kLoop1 ? lanes : 1.0);
 }
 
 FrameCounts countFrame(const Scene& scene, const emu::Texture& env, const emu::DeviceProfile& dev, const CoreModel& core) {

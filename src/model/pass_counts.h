@@ -31,6 +31,11 @@ struct PassCounts {
   // compute passes: the SPIR-V words of the module its invocations run (the largest, where it runs several), for the
   // model's code-size term (DeviceDesc codeWords, codeSlowdown); raster passes: 0 (their rates hold their shaders)
   uint64_t moduleWords = 0;
+  // compute passes: per loop depth 1, 2, 3+ the most values a loop of that depth in the module carries across its back
+  // edge (model/spirv_loops.h carriedByDepth), for the loop-state term; the iterations are ops[kLoop1 + depth - 1].
+  // The counted iterations are the dialect's FOR loops by their FOR depth; a loop of literal count (a plain `for`) is a
+  // SPIR-V loop too and may deepen the loops inside it there: the term then reads the loops of the depth the FOR has.
+  std::array<uint32_t, 3> loopCarried{};
   uint64_t workgroups = 0;    // compute workgroups dispatched (0: one per 64 invocations; raster passes have none)
   uint64_t bytesRead = 0, bytesWritten = 0;  // buffer traffic (texture reads are in the lookups)
   // Buffer reads beyond bytesRead's distinct bytes: what invocations read again that a neighbour read (the MIP chain's

@@ -2,6 +2,7 @@
 // and run many times: the G-buffer pass, the shadow-map passes and the shading pass. Each run()
 // records, submits, waits, reads back, and records the wall time of the submission in lastMs.
 #pragma once
+#include <span>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -64,8 +65,8 @@ VkSamplerCreateInfo environmentSamplerInfo(bool repeatU);
 /// one-level 2D image, and its sampler (nearest: no filtering is involved).
 std::unique_ptr<vk::Image> dataTextureImage(vk::Context& ctx, const emu::Texture& t);
 VkSamplerCreateInfo dataTextureSamplerInfo();
-/// The SPIR-V words of the module ShadePassVk runs for `technique` (the performance model's code-size term).
-size_t shadeModuleWords(const std::string& technique);
+/// The SPIR-V module ShadePassVk runs for `technique` (the performance model's code-size and loop-state terms).
+std::span<const uint32_t> shadeModule(const std::string& technique);
 
 class ShadePassVk {
  public:

@@ -55,7 +55,7 @@ KernelInfo kernelInfo(const std::string& technique) {
 
 }  // namespace
 
-size_t shadeModuleWords(const std::string& technique) { return kernelInfo(technique).spirv.size(); }
+std::span<const uint32_t> shadeModule(const std::string& technique) { return kernelInfo(technique).spirv; }
 
 namespace {
 VkSamplerCreateInfo materialMapSamplerInfo() {
