@@ -47,6 +47,10 @@ struct Checker {
   }
 };
 
+static_assert(kLoopDepths == 3 && opcount::kLoop3 - opcount::kLoop1 + 1 == kLoopDepths &&
+                  std::tuple_size_v<decltype(PassCounts::loopCarried)> == kLoopDepths,
+              "the loop-state term's depths: the counting kinds, PassCounts::loopCarried and carriedByDepth agree");
+
 // A module the pass runs (its size: the code-size term; its loops' carried values: the loop-state term); the visibility
 // passes' pipelines are made before the frame.
 template <size_t N>
