@@ -106,6 +106,13 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
     EXPECT_NE(at, std::string::npos) << from;
     return s.replace(at, from.size(), to);
   };
+  // `good` without one of its top-level blocks: the key, its value, the comma and the newline.
+  auto without = [&](const std::string& block) {
+    std::string s = good;
+    const size_t at = s.find("  " + block);
+    EXPECT_NE(at, std::string::npos) << block;
+    return at == std::string::npos ? s : s.erase(at, block.size() + 4);
+  };
   EXPECT_NE(errorOf("{").find("dev.json: not valid JSON"), std::string::npos);
   EXPECT_NE(errorOf(replaced("\"lanes\"", "\"lane\"")).find("unknown key 'lane'"), std::string::npos);
   // The first "fadd" is the latency table's (keys are written sorted), the last the rates'.
@@ -146,10 +153,7 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
     EXPECT_NE(with("[1, 1.5, 2]", "[16000, 16000, 219000]").find("'code_size.words' must be positive and increasing"), std::string::npos);
     EXPECT_NE(with("[1, 0.9, 2]", "[16000, 56000, 219000]").find("'code_size.slowdown' must be numbers >= 1"), std::string::npos);
     EXPECT_NE(with("1.5", "[16000]").find("'code_size.slowdown' must be an array"), std::string::npos);
-    std::string s = good;
-    const size_t at = s.find("  " + empty);
-    ASSERT_NE(at, std::string::npos);
-    s.erase(at, empty.size() + 4);  // the key, its value, the comma and the newline
+    const std::string s = without(empty);
     EXPECT_NE(errorOf(s).find("missing key 'code_size'"), std::string::npos) << errorOf(s);
   }
   // The loop-state term (session 44): a baseline and a price, neither negative; a file written before it is refused.
@@ -163,10 +167,7 @@ TEST(DeviceDesc, BadInputNamesTheFileAndTheKey) {
     EXPECT_NE(with("1e-10", "\"ten\"").find("'loop_state.values' must be a number >= 0"), std::string::npos);
     EXPECT_NE(errorOf(replaced(zero, "\"loop_state\": {\"values\": 10}")).find("missing key 'loop_state.seconds_per_value'"),
               std::string::npos);
-    std::string s = good;
-    const size_t at = s.find("  " + zero);
-    ASSERT_NE(at, std::string::npos);
-    s.erase(at, zero.size() + 4);
+    const std::string s = without(zero);
     EXPECT_NE(errorOf(s).find("missing key 'loop_state'"), std::string::npos) << errorOf(s);
   }
   EXPECT_NE(errorOf(replaced("\"workgroup_seconds\": 0.0", "\"workgroup_seconds\": null")).find("'workgroup_seconds' must be a number >= 0"),

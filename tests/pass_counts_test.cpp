@@ -75,8 +75,10 @@ TEST_P(PassCountsCoverage, EveryPassTheFrameRunsIsCountedWithTheEmulatorsBits) {
       EXPECT_EQ(p.moduleWords > 0, p.triangles == 0) << p.pass;
       EXPECT_GE(p.moduleWords, p.pipelines ? p.pipelineWords / p.pipelines : 0) << p.pass;
       // A pass whose counted run iterated a loop runs a module with a loop at that depth (the loop-state term's values).
-      for (int d = 0; d < 3; ++d)
-        if (p.ops[size_t(opcount::kLoop1 + d)] > 0.0) EXPECT_GT(p.loopCarried[size_t(d)], 0u) << p.pass << " depth " << d + 1;
+      for (int d = 0; d < model::kLoopDepths; ++d)
+        if (p.ops[size_t(opcount::kLoop1 + d)] > 0.0) {
+          EXPECT_GT(p.loopCarried[size_t(d)], 0u) << p.pass << " depth " << d + 1;
+        }
     }
     EXPECT_EQ(ran, counted) << GetParam().scene << " " << scene.technique << " on " << dev->name;
     EXPECT_TRUE(f.differing.empty()) << f.differing.front();

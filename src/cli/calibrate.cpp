@@ -371,7 +371,6 @@ model::DeviceDesc calibrateDevice(const CalibrateOptions& opts, std::ostream& lo
         out << "; " << kCalibrateCodeSizeModules[m].size() << " words: " << r / 1e6 << " M/s (x " << f << ")";
       }
       out << " (reported, not used: no code_size points written)\n";
-      d.codeWords.clear(), d.codeSlowdown.clear();
     }
     {  // Loop state: 128 multiply-adds an iteration into 8 and into 64 accumulators (calibrate_carried.comp). Each
        // invocation-iteration's time is 128 over the rate; the difference over the difference of the carried values

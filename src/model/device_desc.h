@@ -125,10 +125,10 @@ struct DeviceDesc {
   // first (the size calibrate's rates were read at), linear in log2(W) between two points, the last point's beyond it.
   // The device's machine code for a large module no longer fits the host's caches: probes (docs/RESULTS.md sessions 42,
   // 43) ran the same exact division 1.2-2.1x slower on SwiftShader in a module of the MIS pass's size (219K words)
-  // than in calibrate's 16K-word one, and 10-15% faster on lavapipe. Software devices: calibrate's division kernel
-  // written out 1x, 4x and 16x (calibrate_exmath.comp FIXED_UNROLL), each point's slowdown its rate against the 1x
-  // rate, never below 1 (the unrolled kernel also runs fewer loop iterations per division: not a size effect). GPUs:
-  // no points (their instruction caches are unmeasured here).
+  // than in calibrate's 16K-word one, and 10-15% faster on lavapipe. calibrate measures such points (its division
+  // kernel written out 1x, 4x and 16x, calibrate_exmath.comp FIXED_UNROLL) and reports them without writing them: with
+  // them the validation over-predicted the largest shading modules (docs/RESULTS.md session 44), so every shipped file
+  // has none and the term is off. GPUs: no points (their instruction caches are unmeasured here).
   std::vector<double> codeWords, codeSlowdown;
   // What a value a loop carries from one iteration to the next costs beyond the first loopStateValues (model/
   // spirv_loops.h): loopStateSeconds per extra value per invocation and iteration, device-wide like the rates (a pass

@@ -377,7 +377,7 @@ template <int N> inline LoopScope loopScope(F<N>) { return {}; }
 // (the model's loop-state term: model/spirv_loops.h), unless inside a loop of an untaken block (the device skips it).
 template <int N> inline void loopIteration(F<N>) {
   if (loopDepth >= 0 && loopDepth < 64) loopEpoch[size_t(loopDepth)] = epochNext++;
-  if (loopDepth >= 1 && counting()) tick(Kind(kLoop1 + std::min(loopDepth, 3) - 1));
+  if (loopDepth >= 1 && counting()) tick(Kind(std::min<int>(kLoop1 + loopDepth - 1, kLoop3)));
 }
 // The dialect's specMask (shade/prelude.h): a uniform mask from a specialization constant.
 template <int N> inline M<N> specConstantMask(F<N>, bool b) {

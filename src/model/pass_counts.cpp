@@ -47,18 +47,9 @@ struct Checker {
   }
 };
 
-static_assert(kLoopDepths == 3 && opcount::kLoop3 - opcount::kLoop1 + 1 == kLoopDepths &&
-                  std::tuple_size_v<decltype(PassCounts::loopCarried)> == kLoopDepths,
-              "the loop-state term's depths: the counting kinds, PassCounts::loopCarried and carriedByDepth agree");
+static_assert(opcount::kLoop3 - opcount::kLoop1 + 1 == kLoopDepths,
+              "the loop-state term's depths: the counting kinds and carriedByDepth agree");
 
-// A module the pass runs (its size: the code-size term; its loops' carried values: the loop-state term); the visibility
-// passes' pipelines are made before the frame.
-template <size_t N>
-void runsModule(PassCounts& c, const uint32_t (&module)[N]) {
-  c.moduleWords = std::max<uint64_t>(c.moduleWords, N);
-  const std::vector<uint32_t> carried = carriedByDepth(module);
-  for (int d = 0; d < kLoopDepths; ++d) c.loopCarried[size_t(d)] = std::max(c.loopCarried[size_t(d)], carried[size_t(d)]);
-}
 // A pipeline the pass creates and first dispatches (the Vulkan build makes the technique inputs' pipelines when it builds
 // them): its first dispatch compiles `module`, so the pass counts the module's size with it.
 template <size_t N>
@@ -137,6 +128,12 @@ std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& 
     for (int k = 0; k < opcount::kKinds; ++k) t[size_t(k)] = opcount::counts[size_t(k)];
   });
   return t;
+}
+
+void runsModule(PassCounts& c, std::span<const uint32_t> module) {
+  c.moduleWords = std::max<uint64_t>(c.moduleWords, module.size());
+  const std::vector<uint32_t> carried = carriedByDepth(module);
+  for (int d = 0; d < kLoopDepths; ++d) c.loopCarried[size_t(d)] = std::max(c.loopCarried[size_t(d)], carried[size_t(d)]);
 }
 
 void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks, double lanes) {

@@ -14,6 +14,7 @@
 #include "emu/texture.h"
 #include "model/device_desc.h"
 #include "model/op_count.h"
+#include "model/spirv_loops.h"
 #include "passes/shade.h"
 #include "scene/scene.h"
 
@@ -35,7 +36,7 @@ struct PassCounts {
   // edge (model/spirv_loops.h carriedByDepth), for the loop-state term; the iterations are ops[kLoop1 + depth - 1].
   // The counted iterations are the dialect's FOR loops by their FOR depth; a loop of literal count (a plain `for`) is a
   // SPIR-V loop too and may deepen the loops inside it there: the term then reads the loops of the depth the FOR has.
-  std::array<uint32_t, 3> loopCarried{};
+  std::array<uint32_t, kLoopDepths> loopCarried{};
   uint64_t workgroups = 0;    // compute workgroups dispatched (0: one per 64 invocations; raster passes have none)
   uint64_t bytesRead = 0, bytesWritten = 0;  // buffer traffic (texture reads are in the lookups)
   // Buffer reads beyond bytesRead's distinct bytes: what invocations read again that a neighbour read (the MIP chain's
@@ -89,6 +90,9 @@ std::array<uint64_t, opcount::kKinds> countedTicks(const std::function<void()>& 
 /// (kExSqrt) (shade/exact_math.h exDivPortable, exSqrtPortable: straight-line, the same for every operand): what one
 /// counted ex_div or ex_sqrt operation stands for on a GPU, and the window entries it holds on a software core.
 std::array<uint64_t, opcount::kKinds> exactMathMix(opcount::Kind k);
+/// A compute pass runs `module`: its size (moduleWords, the largest of the pass's modules) and its loops' carried values
+/// (loopCarried, the most per depth) are the code-size and loop-state terms' inputs.
+void runsModule(PassCounts& c, std::span<const uint32_t> module);
 /// Adds ticks of a run whose vectors have `lanes` lanes (ALU kinds are multiplied, texture kinds are per lane).
 void addTicks(PassCounts& c, const std::array<uint64_t, opcount::kKinds>& ticks, double lanes);
 

@@ -16,7 +16,6 @@
 #include "passes/visibility.h"
 
 #include "model/counted.h"
-#include "model/spirv_loops.h"
 
 namespace shadetwin {
 namespace counted_pass {
@@ -40,10 +39,7 @@ PassCounts countShadePass(const Scene& scene, const GBuffer& g, const ShadeInput
   std::vector<float> image;
   PassCounts c;
   c.pass = "shade";
-  const std::span<const uint32_t> module = shadeModule(scene.technique);
-  c.moduleWords = module.size();
-  const std::vector<uint32_t> carried = carriedByDepth(module);
-  for (int d = 0; d < kLoopDepths; ++d) c.loopCarried[size_t(d)] = carried[size_t(d)];
+  runsModule(c, shadeModule(scene.technique));
   opcount::sceneBrdfKinds = brdfKindsOf(materialRecords(scene, true));  // the pipeline's specialization constant
   // Value numbering (a device whose compiler computes a repeated expression once: DeviceDesc value_numbering) is
   // applied where the counted driver marks its invocations: the shading pass, whose shared source repeats the most (a
